@@ -1,0 +1,10 @@
+#pragma once
+
+namespace alignset::cli {
+
+// Each subcommand takes the arguments after its name and returns the process
+// exit status; errors are printed as one line on stderr.
+int RunOptimize(int argc, char** argv);
+int RunEvaluate(int argc, char** argv);
+
+}  // namespace alignset::cli

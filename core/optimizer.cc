@@ -1,0 +1,220 @@
+#include "core/optimizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/owen_sobol.h"
+#include "core/sliced_wasserstein.h"
+
+namespace alignset {
+namespace {
+
+// Everything the revert rule must be able to restore.
+struct AdamState {
+  PointSet x;
+  std::vector<Point2> m;
+  std::vector<Point2> v;
+  std::vector<Point2> grad;  // total gradient at x
+  LossTerms loss;
+  int t = 0;
+};
+
+void EvaluateTotal(const PointSet& x, SpectralEngine& engine, const SlicedWasserstein& sw,
+                   double sw_weight, SpectrumEvaluation* scratch, std::vector<Point2>* sw_grad,
+                   AdamState* state) {
+  engine.Evaluate(x, /*with_gradient=*/true, scratch);
+  state->loss.spectrum = scratch->loss;
+  state->loss.sw = sw.Evaluate(x, sw_grad);
+  state->loss.total = state->loss.spectrum + sw_weight * state->loss.sw;
+  state->grad.resize(x.size());
+  for (size_t j = 0; j < x.size(); ++j) {
+    state->grad[j].x = scratch->gradient[j].x + sw_weight * (*sw_grad)[j].x;
+    state->grad[j].y = scratch->gradient[j].y + sw_weight * (*sw_grad)[j].y;
+  }
+}
+
+void AdamStep(AdamState* s, const OptimizerOptions& o, double lr) {
+  ++s->t;
+  const double c1 = 1.0 - std::pow(o.beta1, s->t);
+  const double c2 = 1.0 - std::pow(o.beta2, s->t);
+  auto update = [&](double g, double* m, double* v, double* x) {
+    *m = o.beta1 * *m + (1.0 - o.beta1) * g;
+    *v = o.beta2 * *v + (1.0 - o.beta2) * g * g;
+    const double mhat = *m / c1;
+    const double vhat = *v / c2;
+    *x = Wrap01(*x - lr * mhat / (std::sqrt(vhat) + o.epsilon));
+  };
+  for (size_t j = 0; j < s->x.size(); ++j) {
+    update(s->grad[j].x, &s->m[j].x, &s->v[j].x, &s->x[j].x);
+    update(s->grad[j].y, &s->m[j].y, &s->v[j].y, &s->x[j].y);
+  }
+}
+
+}  // namespace
+
+double DefaultLearningRate(const std::vector<Frequency>& k) {
+  double vmax = 1.0;
+  for (const Frequency& v : k) vmax = std::max(vmax, std::hypot(v.a, v.b));
+  return 0.05 / vmax;
+}
+
+std::string StopReasonName(StopReason r) {
+  switch (r) {
+    case StopReason::kMaxIterations: return "iteration budget";
+    case StopReason::kStalled: return "stalled";
+    case StopReason::kLearningRateFloor: return "learning-rate floor";
+    case StopReason::kCancelled: return "cancelled";
+  }
+  return "unknown";
+}
+
+Status ValidateProblem(const OptimizationProblem& p) {
+  if (p.n < kMinPoints || p.n > kMaxPoints) {
+    return Status::InvalidArgument("point count " + std::to_string(p.n) + " out of range [" +
+                                   std::to_string(kMinPoints) + ", " +
+                                   std::to_string(kMaxPoints) + "]");
+  }
+  if (p.directions.empty() || p.directions.size() > 2) {
+    return Status::InvalidArgument("expected one or two arbitrary directions, got " +
+                                   std::to_string(p.directions.size()));
+  }
+  for (double d : p.directions) {
+    if (!std::isfinite(d)) return Status::InvalidArgument("direction must be a finite angle");
+  }
+  if (p.frequency_params) return ValidateFrequencyParams(*p.frequency_params);
+  return Status::Ok();
+}
+
+Status ValidateOptions(const OptimizerOptions& o) {
+  if (o.max_iterations < 0) return Status::InvalidArgument("max_iterations must be >= 0");
+  if (!(o.learning_rate >= 0.0) || !std::isfinite(o.learning_rate)) {
+    return Status::InvalidArgument("learning_rate must be finite and >= 0");
+  }
+  if (!(o.sw_weight >= 0.0) || !std::isfinite(o.sw_weight)) {
+    return Status::InvalidArgument("sw_weight must be finite and >= 0");
+  }
+  if (!(o.revert_divisor > 1.0)) return Status::InvalidArgument("revert_divisor must be > 1");
+  if (!(o.plateau_factor > 0.0 && o.plateau_factor <= 1.0)) {
+    return Status::InvalidArgument("plateau_factor must be in (0, 1]");
+  }
+  if (o.stall_iterations < 1) return Status::InvalidArgument("stall_iterations must be >= 1");
+  return Status::Ok();
+}
+
+LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine) {
+  const std::vector<double> dirs = AnisotropyDirections(arbitrary_directions);
+  engine.SetFrequencies(BuildFrequencySet(params, dirs));
+  SpectrumEvaluation eval;
+  engine.Evaluate(points, false, &eval);
+  SlicedWasserstein sw(static_cast<uint32_t>(points.size()), dirs);
+  LossTerms t;
+  t.spectrum = eval.loss;
+  t.sw = sw.Evaluate(points, nullptr);
+  t.total = t.spectrum + sw_weight * t.sw;
+  return t;
+}
+
+StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
+                                      const OptimizerOptions& options, SpectralEngine& engine,
+                                      const ProgressCallback& progress) {
+  if (Status s = ValidateProblem(problem); !s.ok()) return s;
+  if (Status s = ValidateOptions(options); !s.ok()) return s;
+
+  OptimizationResult result;
+  result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
+  const std::vector<double> dirs = AnisotropyDirections(problem.directions);
+  const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
+  result.frequency_count = k.size();
+  engine.SetFrequencies(k);
+  const SlicedWasserstein sw(problem.n, dirs);
+
+  double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
+
+  AdamState cur;
+  cur.x = OwenScrambledSobol(problem.n, problem.seed);
+  cur.m.assign(problem.n, {0.0, 0.0});
+  cur.v.assign(problem.n, {0.0, 0.0});
+  SpectrumEvaluation scratch;
+  std::vector<Point2> sw_grad;
+  EvaluateTotal(cur.x, engine, sw, options.sw_weight, &scratch, &sw_grad, &cur);
+  result.initial = cur.loss;
+
+  AdamState accepted = cur;
+  PointSet best = cur.x;
+  LossTerms best_loss = cur.loss;
+  double stall_reference = best_loss.total;
+  int since_improvement = 0;
+  StopReason reason = StopReason::kMaxIterations;
+
+  auto report = [&](int iteration) {
+    if (!progress) return true;
+    ProgressInfo info;
+    info.iteration = iteration;
+    info.max_iterations = options.max_iterations;
+    info.loss = accepted.loss.total;
+    info.spectrum_loss = accepted.loss.spectrum;
+    info.sw_loss = accepted.loss.sw;
+    info.best_loss = best_loss.total;
+    info.learning_rate = lr;
+    info.reverts = result.reverts;
+    return progress(info);
+  };
+
+  int it = 0;
+  while (it < options.max_iterations) {
+    ++it;
+    AdamStep(&cur, options, lr);
+    EvaluateTotal(cur.x, engine, sw, options.sw_weight, &scratch, &sw_grad, &cur);
+
+    const bool diverged = !std::isfinite(cur.loss.total) ||
+                          cur.loss.spectrum > (1.0 + options.divergence_threshold) *
+                                                  accepted.loss.spectrum;
+    if (diverged) {
+      cur = accepted;
+      lr /= options.revert_divisor;
+      ++result.reverts;
+      if (lr < options.min_learning_rate) {
+        reason = StopReason::kLearningRateFloor;
+        break;
+      }
+    } else {
+      accepted = cur;
+      if (cur.loss.total < best_loss.total) {
+        best_loss = cur.loss;
+        best = cur.x;
+      }
+      if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
+        stall_reference = best_loss.total;
+        since_improvement = 0;
+      } else if (++since_improvement >= options.stall_iterations) {
+        if (options.plateau_factor >= 1.0) {
+          reason = StopReason::kStalled;
+          break;
+        }
+        lr *= options.plateau_factor;
+        since_improvement = 0;
+        stall_reference = best_loss.total;
+        if (lr < options.min_learning_rate) {
+          reason = StopReason::kStalled;
+          break;
+        }
+      }
+    }
+    if (options.progress_every > 0 && it % options.progress_every == 0 && !report(it)) {
+      reason = StopReason::kCancelled;
+      break;
+    }
+  }
+  result.iterations = it;
+  if (reason != StopReason::kCancelled) report(it);
+
+  result.points = std::move(best);
+  result.final_loss = best_loss;
+  result.final_learning_rate = lr;
+  result.stop_reason = reason;
+  return result;
+}
+
+}  // namespace alignset

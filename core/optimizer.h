@@ -1,0 +1,117 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/frequency_set.h"
+#include "core/point_set.h"
+#include "core/spectral_engine.h"
+#include "core/status.h"
+
+namespace alignset {
+
+// Smallest and largest point counts the core accepts. Below 16 there is no
+// meaningful frequency set; above 2^20 a single set would not fit the
+// service's messages.
+inline constexpr uint32_t kMinPoints = 16;
+inline constexpr uint32_t kMaxPoints = 1u << 20;
+
+// What to make: N points whose spectrum is dark along 0°, 90° and the one or
+// two arbitrary directions (degrees, spectral convention: the edge normal).
+struct OptimizationProblem {
+  uint32_t n = 0;
+  std::vector<double> directions;
+  uint64_t seed = 1;
+  // Unset: DefaultFrequencyParams(n).
+  std::optional<FrequencyParams> frequency_params;
+};
+
+struct OptimizerOptions {
+  int max_iterations = 3000;
+  // First Adam step size. 0 picks DefaultLearningRate() from K.
+  double learning_rate = 0.0;
+  // Total loss L = L_Spec + sw_weight * L_SW (the paper's c = 10).
+  double sw_weight = 10.0;
+  double beta1 = 0.9;
+  double beta2 = 0.999;
+  double epsilon = 1e-12;
+  // The revert-and-divide rule: a step whose *spectrum* loss rises by more
+  // than this fraction over the last accepted state is undone and the
+  // learning rate divided by `revert_divisor`. The SW term is left out of the
+  // trigger on purpose: it jumps whenever a point wraps across the torus edge,
+  // and treating that as divergence collapses the learning rate.
+  double divergence_threshold = 0.10;
+  double revert_divisor = 10.0;
+  // Plateau rule: when the best total loss has not improved by
+  // `stall_tolerance` (relative) over `stall_iterations` accepted steps, the
+  // learning rate is multiplied by `plateau_factor`; with factor 1 (or
+  // below the floor) the run stops as stalled.
+  int stall_iterations = 200;
+  double stall_tolerance = 1e-3;
+  double plateau_factor = 0.5;
+  // The run stops once the learning rate falls below this.
+  double min_learning_rate = 1e-7;
+  // Call the progress callback every this many iterations (and at the end).
+  int progress_every = 10;
+};
+
+// The first step size, scaled to the highest suppressed frequency: a step of
+// lr moves the phase at frequency |v| by 2 pi |v| lr, so lr ~ 1 / |v|max keeps
+// the largest phase change per step a fixed fraction of a cycle.
+double DefaultLearningRate(const std::vector<Frequency>& k);
+
+enum class StopReason { kMaxIterations, kStalled, kLearningRateFloor, kCancelled };
+std::string StopReasonName(StopReason r);
+
+struct ProgressInfo {
+  int iteration = 0;
+  int max_iterations = 0;
+  double loss = 0.0;
+  double spectrum_loss = 0.0;
+  double sw_loss = 0.0;
+  double best_loss = 0.0;
+  double learning_rate = 0.0;
+  int reverts = 0;
+};
+
+// Returning false cancels the optimization (the best set so far is kept).
+using ProgressCallback = std::function<bool(const ProgressInfo&)>;
+
+struct LossTerms {
+  double total = 0.0;
+  double spectrum = 0.0;
+  double sw = 0.0;
+};
+
+struct OptimizationResult {
+  PointSet points;          // the best set seen, in [0,1)^2
+  LossTerms initial;        // at the Owen-Sobol start
+  LossTerms final_loss;     // of `points`
+  FrequencyParams frequency_params;
+  size_t frequency_count = 0;
+  int iterations = 0;
+  int reverts = 0;
+  double final_learning_rate = 0.0;
+  StopReason stop_reason = StopReason::kMaxIterations;
+};
+
+// Checks a problem at the boundary: N in [kMinPoints, kMaxPoints], one or two
+// finite directions, valid frequency parameters.
+Status ValidateProblem(const OptimizationProblem& problem);
+Status ValidateOptions(const OptimizerOptions& options);
+
+// Optimizes the set by Adam on L_Spec + c L_SW from Owen-scrambled Sobol.
+// Deterministic for a given problem and options (the engines' sums do not
+// depend on the thread count).
+StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
+                                      const OptimizerOptions& options, SpectralEngine& engine,
+                                      const ProgressCallback& progress = nullptr);
+
+// L_Spec, L_SW and the total of a given set (no gradient), for reporting.
+LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine);
+
+}  // namespace alignset
