@@ -1,0 +1,95 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/canonical.h"
+#include "core/frequency_set.h"
+#include "core/optimizer.h"
+#include "core/point_set.h"
+#include "core/status.h"
+
+namespace alignset::storage {
+
+// Bumped whenever the optimizer's output for the same parameters changes.
+inline constexpr int kAlgorithmVersion = 1;
+
+// Identifies how a set was made: every optimization parameter and the
+// algorithm version, hashed into a short stable hex id. A changed parameter
+// gives a new profile, so a stale set is never returned.
+std::string ProfileId(const FrequencyParams& params, const OptimizerOptions& options,
+                      uint64_t seed, int algorithm_version = kAlgorithmVersion);
+
+// Primary key of a cached canonical set.
+struct SetKey {
+  uint32_t n = 0;
+  CanonicalDirections dirs;
+  std::string profile;
+  friend bool operator==(const SetKey&, const SetKey&) = default;
+};
+
+struct SetRecord {
+  SetKey key;
+  PointSet points;  // the canonical (unaligned) set
+  LossTerms loss;
+  int iterations = 0;
+  double optimize_seconds = 0.0;
+  std::string engine;
+  int64_t created_unix = 0;
+};
+
+struct CacheStats {
+  int64_t sets = 0;
+  int64_t bytes = 0;  // sum of blob sizes
+  int64_t one_direction_sets = 0;
+  int64_t two_direction_sets = 0;
+};
+
+struct VerifyReport {
+  int64_t checked = 0;
+  std::vector<SetKey> corrupt;
+};
+
+struct MergeReport {
+  int64_t added = 0;
+  int64_t skipped_existing = 0;
+  int64_t skipped_corrupt = 0;
+};
+
+// The SQLite cache of canonical sets: WAL mode, busy timeout, schema version
+// table with migrations, one transaction per written set, a checksum over
+// every blob verified on read. Thread-safe.
+class SetCache {
+ public:
+  struct Options {
+    bool read_only = false;
+    int busy_timeout_ms = 5000;
+  };
+  static StatusOr<std::unique_ptr<SetCache>> Open(const std::string& path, const Options& options);
+  static StatusOr<std::unique_ptr<SetCache>> Open(const std::string& path) {
+    return Open(path, Options{});
+  }
+  virtual ~SetCache() = default;
+
+  // Inserts or replaces the record in one transaction.
+  virtual Status Put(const SetRecord& record) = 0;
+  // NotFound on a miss; DataLoss when the stored blob fails its checksum
+  // (callers treat that as a miss and recompute; Put replaces the row).
+  virtual StatusOr<SetRecord> Get(const SetKey& key) = 0;
+  virtual StatusOr<bool> Contains(const SetKey& key) = 0;
+  // Keys (optionally for one N / one profile), in (n, count, phi1, phi2) order.
+  virtual StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n = std::nullopt,
+                                             std::optional<std::string> profile = std::nullopt) = 0;
+  virtual StatusOr<CacheStats> Stats() = 0;
+  // Re-reads every blob and checks its checksum.
+  virtual StatusOr<VerifyReport> Verify() = 0;
+  // Copies every verified set of `other_path` that this cache lacks.
+  virtual StatusOr<MergeReport> MergeFrom(const std::string& other_path) = 0;
+  // Writes a consistent copy of this cache to `path` (which must not exist).
+  virtual Status ExportTo(const std::string& path) = 0;
+};
+
+}  // namespace alignset::storage
