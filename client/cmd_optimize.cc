@@ -22,7 +22,7 @@ int Fail(const Status& s) {
 int RunOptimize(int argc, char** argv) {
   auto args = Args::Parse(argc, argv,
                           {"n", "dir", "seed", "max-iterations", "engine", "threads", "out",
-                           "learning-rate"});
+                           "learning-rate", "length", "width", "radius", "sw-weight"});
   if (!args.ok()) return Fail(args.status());
   if (!args->positionals().empty()) {
     return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
@@ -46,6 +46,9 @@ int RunOptimize(int argc, char** argv) {
   auto lr = args->Double("learning-rate", 0.0);
   if (!lr.ok()) return Fail(lr.status());
   options.learning_rate = *lr;
+  auto sw_weight = args->Double("sw-weight", options.sw_weight);
+  if (!sw_weight.ok()) return Fail(sw_weight.status());
+  options.sw_weight = *sw_weight;
   auto threads = args->Int("threads", 0, 0, 1024);
   if (!threads.ok()) return Fail(threads.status());
   auto engine_name = args->String("engine", "auto");
@@ -59,6 +62,17 @@ int RunOptimize(int argc, char** argv) {
   problem.n = static_cast<uint32_t>(*n);
   problem.directions = *dirs;
   problem.seed = static_cast<uint64_t>(*seed);
+  if (args->Has("length") || args->Has("width") || args->Has("radius")) {
+    // Overrides of the frequency set's shape; unspecified ones keep the default.
+    FrequencyParams fp = DefaultFrequencyParams(problem.n);
+    auto length = args->Double("length", fp.length);
+    auto width = args->Double("width", fp.width);
+    auto radius = args->Double("radius", fp.radius);
+    for (const auto* v : {&length, &width, &radius}) {
+      if (!v->ok()) return Fail(v->status());
+    }
+    problem.frequency_params = FrequencyParams{*length, *width, *radius};
+  }
   if (Status s = ValidateProblem(problem); !s.ok()) return Fail(s);
 
   // Fail before the work if the output cannot be written.

@@ -168,9 +168,11 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     AdamStep(&cur, options, lr);
     EvaluateTotal(cur.x, engine, sw, options.sw_weight, &scratch, &sw_grad, &cur);
 
-    const bool diverged = !std::isfinite(cur.loss.total) ||
-                          cur.loss.spectrum > (1.0 + options.divergence_threshold) *
-                                                  accepted.loss.spectrum;
+    const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
+    const double now = watch_total ? cur.loss.total : cur.loss.spectrum;
+    const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
+    const bool diverged =
+        !std::isfinite(cur.loss.total) || now > (1.0 + options.divergence_threshold) * before;
     if (diverged) {
       cur = accepted;
       lr /= options.revert_divisor;

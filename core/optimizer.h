@@ -29,6 +29,12 @@ struct OptimizationProblem {
   std::optional<FrequencyParams> frequency_params;
 };
 
+// Which loss the revert-and-divide rule watches.
+enum class DivergenceSignal {
+  kSpectrumLoss,  // alignset's default, see OptimizerOptions
+  kTotalLoss,     // the literal rule; kept to measure why it is not the default
+};
+
 struct OptimizerOptions {
   int max_iterations = 3000;
   // First Adam step size. 0 picks DefaultLearningRate() from K.
@@ -44,6 +50,7 @@ struct OptimizerOptions {
   // trigger on purpose: it jumps whenever a point wraps across the torus edge,
   // and treating that as divergence collapses the learning rate.
   double divergence_threshold = 0.10;
+  DivergenceSignal divergence_signal = DivergenceSignal::kSpectrumLoss;
   double revert_divisor = 10.0;
   // Plateau rule: when the best total loss has not improved by
   // `stall_tolerance` (relative) over `stall_iterations` accepted steps, the

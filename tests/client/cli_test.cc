@@ -1,0 +1,100 @@
+// The command line as a user meets it: the real binary, real files.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "client/point_file.h"
+
+namespace {
+
+struct CliRun {
+  int exit_code;
+  std::string output;
+};
+
+CliRun RunCli(const std::string& args) {
+  const std::string cmd = std::string(ALIGNSET_CLI_PATH) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[512];
+  while (p && std::fgets(buf, sizeof(buf), p)) out += buf;
+  const int status = p ? pclose(p) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("alignset_cli_test_" + name)).string();
+}
+
+int Lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(Cli, BadInputGetsOneLineErrorAndNonZeroExit) {
+  const std::string out = TempPath("bad.txt");
+  const char* cases[] = {
+      "optimize --n 8 --dir 30 --out ",
+      "optimize --n abc --dir 30 --out ",
+      "optimize --n 64 --dir thirty --out ",
+      "optimize --n 64 --dir nan --out ",
+      "optimize --n 64 --dir inf --out ",
+      "optimize --n 64 --dir 1 --dir 2 --dir 3 --out ",
+      "optimize --n 64 --out ",
+      "optimize --n 64 --dir 30 --engine warp --out ",
+      "optimize --n 64 --dir 30 --bogus 1 --out ",
+      "evaluate --normal 30 /nonexistent/file.txt --x ",
+  };
+  for (const char* c : cases) {
+    const CliRun r = RunCli(std::string(c) + out);
+    EXPECT_NE(r.exit_code, 0) << c;
+    EXPECT_EQ(Lines(r.output), 1) << c << " printed: " << r.output;
+    EXPECT_NE(r.output.find("alignset"), std::string::npos) << r.output;
+  }
+  const CliRun unwritable = RunCli("optimize --n 64 --dir 30 --out /nonexistent-dir/set.txt");
+  EXPECT_NE(unwritable.exit_code, 0);
+  EXPECT_EQ(Lines(unwritable.output), 1) << unwritable.output;
+  EXPECT_NE(unwritable.output.find("cannot write"), std::string::npos);
+  EXPECT_NE(RunCli("frobnicate").exit_code, 0);
+}
+
+TEST(Cli, OptimizeWritesTheSetAndEvaluateReadsIt) {
+  const std::string out = TempPath("set.txt");
+  const CliRun r = RunCli("optimize --n 64 --dir 30 --max-iterations 50 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("spectrum loss"), std::string::npos);
+  auto pts = alignset::cli::ReadPointFile(out);
+  ASSERT_TRUE(pts.ok()) << pts.status().ToString();
+  EXPECT_EQ(pts->size(), 64u);
+  const CliRun e = RunCli("evaluate " + out + " --normal 30 --shifts 1024");
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  EXPECT_NE(e.output.find("variance ratio"), std::string::npos);
+  EXPECT_NE(e.output.find("mean periodogram 30 deg"), std::string::npos);
+}
+
+TEST(PointFile, TextAndNpyRoundTripBitExact) {
+  alignset::PointSet pts = {{0.1, 0.2}, {0.999999999999, 1e-300}, {0.5, 0.25}};
+  for (const char* ext : {".txt", ".npy"}) {
+    const std::string path = TempPath(std::string("rt") + ext);
+    ASSERT_TRUE(alignset::cli::WritePointFile(path, pts, "comment line").ok());
+    auto back = alignset::cli::ReadPointFile(path);
+    ASSERT_TRUE(back.ok()) << back.status().ToString();
+    EXPECT_EQ(*back, pts) << ext;
+  }
+}
+
+TEST(PointFile, MalformedTextIsRejectedWithItsLine) {
+  const std::string path = TempPath("malformed.txt");
+  std::ofstream(path) << "# header\n0.1 0.2\n0.3 oops\n";
+  auto r = alignset::cli::ReadPointFile(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.status().message().find(":3:"), std::string::npos) << r.status().message();
+}
+
+}  // namespace
