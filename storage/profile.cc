@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 104,
+static_assert(sizeof(OptimizerOptions) == 112,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -56,6 +56,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "beta2", o.beta2);
   Field(t, "epsilon", o.epsilon);
   Field(t, "divergence_threshold", o.divergence_threshold);
+  Field(t, "divergence_signal", static_cast<int>(o.divergence_signal));
   Field(t, "revert_divisor", o.revert_divisor);
   Field(t, "stall_iterations", o.stall_iterations);
   Field(t, "stall_tolerance", o.stall_tolerance);

@@ -46,6 +46,7 @@ TEST(ProfileId, EveryParameterChangesTheId) {
       {"beta2", [](auto&, auto& o, auto&, auto&) { o.beta2 = 0.99; }},
       {"epsilon", [](auto&, auto& o, auto&, auto&) { o.epsilon = 1e-8; }},
       {"divergence_threshold", [](auto&, auto& o, auto&, auto&) { o.divergence_threshold = 0.2; }},
+      {"divergence_signal", [](auto&, auto& o, auto&, auto&) { o.divergence_signal = DivergenceSignal::kTotalLoss; }},
       {"revert_divisor", [](auto&, auto& o, auto&, auto&) { o.revert_divisor = 5.0; }},
       {"stall_iterations", [](auto&, auto& o, auto&, auto&) { o.stall_iterations = 100; }},
       {"stall_tolerance", [](auto&, auto& o, auto&, auto&) { o.stall_tolerance = 1e-4; }},
@@ -105,7 +106,7 @@ TEST(ProfileText, CanonicalSerialization) {
   EXPECT_EQ(ProfileText({40.0, 3.0, 12.5}, o, 18446744073709551615ull, 1),
             "alignset-profile-v1;algorithm_version=1;seed=18446744073709551615;length=40;width=3;"
             "radius=12.5;max_iterations=500;learning_rate=0.002;sw_weight=10;beta1=0.9;"
-            "beta2=0.999;epsilon=1e-12;divergence_threshold=0.1;revert_divisor=10;"
+            "beta2=0.999;epsilon=1e-12;divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
             "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;min_learning_rate=1e-07;");
 }
 
