@@ -6,5 +6,8 @@ namespace alignset::cli {
 // exit status; errors are printed as one line on stderr.
 int RunOptimize(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
+int RunSample(int argc, char** argv);
+int RunAlign(int argc, char** argv);
+int RunVariance(int argc, char** argv);
 
 }  // namespace alignset::cli
