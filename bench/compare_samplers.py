@@ -21,7 +21,9 @@ Usage:
   /usr/bin/python3 bench/compare_samplers.py --n-max 4096 --iterations 1500
 The optimization dominates the cost (direct engine: ~3.5 ms/iteration at
 N = 1024, ~55 ms at 4096, ~16x per 4x N); use --engine fast once it exists,
-or --opt-n-max to stop optimizing above some N.
+or --opt-n-max to stop optimizing above some N. Optimized canonical sets are
+kept in --workdir by (phi, N, iterations, engine) and reused by later runs;
+delete them to re-optimize.
 """
 
 import argparse
@@ -153,7 +155,7 @@ def main():
             canon = {}
             topt = time.time()
             for phi in sorted({canonical_phi(d) for d in normals}):
-                path = os.path.join(args.workdir, "opt_phi%d_%d_it%d.txt" % (phi, n, args.iterations))
+                path = os.path.join(args.workdir, "opt_phi%d_%d_it%d_%s.txt" % (phi, n, args.iterations, args.engine))
                 if not os.path.exists(path):
                     cmd = [binary, "optimize", "--n", str(n), "--dir", str(phi), "--seed", "1",
                            "--max-iterations", str(args.iterations), "--engine", args.engine, "--out", path]
@@ -213,12 +215,13 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(9, 6.5))
-    for m in methods:
+    for i, m in enumerate(methods):
         row_ns = [n for n in ns if n in variance[m]]
+        color = "black" if m == "aligned optimized" else plt.cm.tab20(i % 20)
         style = "-" if m in ("aligned optimized", "pmj02bn sheared", "owen-sobol", "random") else "--"
         width = 2.5 if m == "aligned optimized" else 1.2
         ax.loglog(row_ns, [variance[m][n] for n in row_ns], style, marker="o", markersize=3, linewidth=width,
-                  label="%s (%.2f)" % (m, slopes[m]))
+                  color=color, label="%s (%.2f)" % (m, slopes[m]))
     ax.set_xlabel("N")
     ax.set_ylabel("variance (CP rotation)")
     ax.set_title("Step edges, normals %s deg" % ", ".join("%g" % d for d in normals))
