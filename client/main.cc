@@ -17,6 +17,11 @@ void PrintUsage() {
                "  evaluate  FILE --normal DEG [--shifts K] [--seed S]\n"
                "            CP-rotated variance on a step edge and strip periodograms,\n"
                "            beside an Owen-scrambled Sobol set of the same N\n");
+#ifdef ALIGNSET_HAVE_STORAGE
+  std::fprintf(stderr,
+               "  cache     export|import|merge|verify|list ...\n"
+               "            maintain SQLite cache files ('alignset cache help')\n");
+#endif
 }
 
 }  // namespace
@@ -30,6 +35,9 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   if (cmd == "optimize") return alignset::cli::RunOptimize(argc - 2, argv + 2);
   if (cmd == "evaluate") return alignset::cli::RunEvaluate(argc - 2, argv + 2);
+#ifdef ALIGNSET_HAVE_STORAGE
+  if (cmd == "cache") return alignset::cli::RunCache(argc - 2, argv + 2);
+#endif
   std::fprintf(stderr, "alignset: unknown command '%s' (try 'alignset --help')\n", cmd.c_str());
   return 2;
 }
