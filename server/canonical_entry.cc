@@ -17,7 +17,7 @@ std::string EncodePoints(const PointSet& points) {
 
 namespace {
 size_t OpsIndex(const AlignOps& ops) {
-  return (ops.swap ? 4 : 0) + (ops.invert ? 2 : 0);
+  return (ops.swap ? 4 : 0) + (ops.invert ? 2 : 0) + (ops.invert_y ? 1 : 0);
 }
 }  // namespace
 

@@ -120,6 +120,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   FillKey(key, md->mutable_key());
   md->set_swapped(canon.ops.swap);
   md->set_inverted(canon.ops.invert);
+  md->set_inverted_y(canon.ops.invert_y);
   md->mutable_loss()->set_total(rec.loss.total);
   md->mutable_loss()->set_spectrum(rec.loss.spectrum);
   md->mutable_loss()->set_sliced_wasserstein(rec.loss.sw);

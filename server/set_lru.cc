@@ -2,9 +2,7 @@
 
 namespace alignset::server {
 
-std::string KeyString(const storage::SetKey& key) {
-  return "n=" + std::to_string(key.n) + " " + ToString(key.dirs) + " profile=" + key.profile;
-}
+std::string KeyString(const storage::SetKey& key) { return storage::KeyToString(key); }
 
 std::shared_ptr<const CanonicalEntry> SetLru::Get(const std::string& key) {
   std::lock_guard<std::mutex> lock(mu_);
