@@ -98,7 +98,9 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   if (Status s = ValidateOptions(options.optimizer); !s.ok()) return s;
   std::unique_ptr<Scheduler> s(new Scheduler(options, cache, metrics));
   for (int i = 0; i < options.workers; ++i) {
-    auto engine = MakeSpectralEngine(options.engine, options.threads_per_worker);
+    auto engine = options.engine_factory
+                      ? options.engine_factory()
+                      : MakeSpectralEngine(options.engine, options.threads_per_worker);
     if (!engine.ok()) return engine.status();
     s->engines_.push_back(std::move(engine).value());
   }

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -79,7 +80,7 @@ class Ticket {
 // stored for it. A later request for the key starts afresh.
 //
 // Priority: interactive before batch; a batch job that an interactive request
-// joins is promoted. The queue is bounded: a request that would add a job to
+// joins is promoted (keeping its place in arrival order). The queue is bounded: a request that would add a job to
 // a full queue gets RESOURCE_EXHAUSTED (joining an existing job always works).
 //
 // Every finished set is stored in SQLite in one transaction (SetCache::Put)
@@ -94,6 +95,9 @@ class Scheduler {
     OptimizerOptions optimizer;
     uint64_t seed = 1;
     size_t memory_cache_bytes = size_t{512} << 20;
+    // Makes each worker's engine; unset: MakeSpectralEngine(engine,
+    // threads_per_worker). Tests put an engine here that they can hold.
+    std::function<StatusOr<std::unique_ptr<SpectralEngine>>()> engine_factory;
   };
 
   // Makes one spectral engine per worker up front, so a missing engine is a
