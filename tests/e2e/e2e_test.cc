@@ -399,6 +399,29 @@ TEST_F(E2eTest, TlsServerServesATrustingClient) {
   EXPECT_FALSE(plain.ok());
 }
 
+TEST_F(E2eTest, GetSamplesServesTheCoreSamplersOptionallySheared) {
+  StartServer(kFast);
+  auto client = Client();
+  auto plain = client->GetSamples("pmj02bn", 256, 7, std::nullopt);
+  ASSERT_TRUE(plain.ok()) << plain.status().message();
+  ASSERT_EQ(plain->size(), 256u);
+  auto sheared = client->GetSamples("pmj02bn", 256, 7, 30.0);
+  ASSERT_TRUE(sheared.ok()) << sheared.status().message();
+  ASSERT_EQ(sheared->size(), 256u);
+  // Algorithm 2 at 30°: p = (tan 30°, 0), x' = x - p.x * y (mod 1), y kept.
+  const double t = std::tan(30.0 * M_PI / 180.0);
+  for (size_t i = 0; i < 256; ++i) {
+    EXPECT_EQ((*sheared)[i].y, (*plain)[i].y);
+    double d = std::fabs((*sheared)[i].x - ((*plain)[i].x - t * (*plain)[i].y));
+    d = std::fabs(d - std::round(d));  // equal mod 1
+    EXPECT_LT(d, 1e-12) << i;
+  }
+  // A sampler that needs a square N says so.
+  auto refused = client->GetSamples("jittered", 250, 1, std::nullopt);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("INVALID_ARGUMENT"), std::string::npos);
+}
+
 TEST_F(E2eTest, CliGetWritesTheSetAndFailsWithOneLine) {
   StartServer(kFast);
   const std::string out = dir_.path() + "/set.txt";
