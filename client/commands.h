@@ -13,5 +13,11 @@ int RunVariance(int argc, char** argv);
 // export / import / merge / verify / list of SQLite cache files.
 int RunCache(int argc, char** argv);
 #endif
+#ifdef ALIGNSET_HAVE_SERVICE
+// Clients of alignset-server (client/service_client.h).
+int RunGet(int argc, char** argv);
+int RunPrecompute(int argc, char** argv);
+int RunStats(int argc, char** argv);
+#endif
 
 }  // namespace alignset::cli
