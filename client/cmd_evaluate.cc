@@ -8,7 +8,6 @@
 #include "core/direct_engine.h"
 #include "core/frequency_set.h"
 #include "core/owen_sobol.h"
-#include "core/step_integrand.h"
 #include "core/variance.h"
 
 namespace alignset::cli {
@@ -29,13 +28,13 @@ struct Figures {
   std::vector<double> strip_means;
 };
 
-Figures Measure(const std::vector<PointSet>& sets, const StepIntegrand& f, int shifts,
+Figures Measure(const std::vector<PointSet>& sets, double normal, int edges, int shifts,
                 uint64_t seed, const FrequencyParams& params, const std::vector<double>& strips,
                 DirectEngine* engine) {
   Figures out;
   out.strip_means.assign(strips.size(), 0.0);
   for (const PointSet& s : sets) {
-    const VarianceEstimate v = CranleyPattersonVariance(s, f, f.Integral(), shifts, seed);
+    const VarianceEstimate v = StepEdgeVariance(s, normal, edges, shifts, seed);
     out.variance += v.variance / sets.size();
     out.std_error += v.std_error / sets.size();
     for (size_t i = 0; i < strips.size(); ++i) {
@@ -51,7 +50,7 @@ Figures Measure(const std::vector<PointSet>& sets, const StepIntegrand& f, int s
 }  // namespace
 
 int RunEvaluate(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"normal", "shifts", "seed", "dir", "threads"});
+  auto args = Args::Parse(argc, argv, {"normal", "shifts", "seed", "dir", "threads", "edges"});
   if (!args.ok()) return Fail(args.status());
   if (args->positionals().size() != 1) {
     return Fail(Status::InvalidArgument("expected exactly one point-set file"));
@@ -63,6 +62,8 @@ int RunEvaluate(int argc, char** argv) {
   if (!shifts.ok()) return Fail(shifts.status());
   auto seed = args->Int("seed", 7, 0, INT64_MAX);
   if (!seed.ok()) return Fail(seed.status());
+  auto edges = args->Int("edges", 8, 1, 1024);
+  if (!edges.ok()) return Fail(edges.status());
   auto extra = args->Doubles("dir");
   if (!extra.ok()) return Fail(extra.status());
   auto threads = args->Int("threads", 0, 0, 1024);
@@ -74,16 +75,16 @@ int RunEvaluate(int argc, char** argv) {
   std::vector<double> strips = {0.0, 90.0, *normal};
   for (double d : *extra) strips.push_back(d);
   const FrequencyParams params = DefaultFrequencyParams(n);
-  const StepIntegrand step(*normal);
   DirectEngine engine(static_cast<int>(*threads));
 
-  const Figures set = Measure({*points}, step, static_cast<int>(*shifts), *seed, params, strips, &engine);
+  const Figures set = Measure({*points}, *normal, static_cast<int>(*edges), static_cast<int>(*shifts), *seed, params, strips, &engine);
   std::vector<PointSet> sobol;
   for (int i = 0; i < kSobolScrambles; ++i) sobol.push_back(OwenScrambledSobol(n, 1000 + i));
-  const Figures base = Measure(sobol, step, static_cast<int>(*shifts), *seed, params, strips, &engine);
+  const Figures base = Measure(sobol, *normal, static_cast<int>(*edges), static_cast<int>(*shifts), *seed, params, strips, &engine);
 
-  std::printf("N %u, step edge with normal %.6g deg through the centre, %lld CP shifts\n", n,
-              *normal, static_cast<long long>(*shifts));
+  std::printf("N %u, %lld parallel step edges with normal %.6g deg (offsets -1/4..1/4), "
+              "%lld CP shifts each\n",
+              n, static_cast<long long>(*edges), *normal, static_cast<long long>(*shifts));
   std::printf("%-28s %14s %14s\n", "", "this set", "owen-sobol");
   std::printf("%-28s %14.4e %14.4e\n", "variance", set.variance, base.variance);
   std::printf("%-28s %14.2e %14.2e\n", "  (std. error)", set.std_error, base.std_error);

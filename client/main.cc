@@ -15,7 +15,7 @@ void PrintUsage() {
                "            [--engine auto|direct|fast|cuda] [--threads T] [--learning-rate LR]\n"
                "            [--length L] [--width W] [--radius R] [--sw-weight C] --out FILE\n"
                "            optimize an aligned set (DEG: spectral direction = edge normal)\n"
-               "  evaluate  FILE --normal DEG [--shifts K] [--seed S]\n"
+               "  evaluate  FILE --normal DEG [--edges E] [--shifts K] [--seed S]\n"
                "            CP-rotated variance on a step edge and strip periodograms,\n"
                "            beside an Owen-scrambled Sobol set of the same N\n"
                "  sample    KIND --n N [--seed S] [--shear DEG] --out FILE\n"

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/hash.h"
+#include "core/step_integrand.h"
 
 namespace alignset {
 
@@ -28,6 +29,23 @@ VarianceEstimate CranleyPattersonVariance(const PointSet& points,
   out.variance = m;
   const double var_of_sq = std::max(0.0, sum_sq / shifts - m * m);
   out.std_error = std::sqrt(var_of_sq / shifts);
+  return out;
+}
+
+VarianceEstimate StepEdgeVariance(const PointSet& points, double normal_deg, int edges, int shifts,
+                                  uint64_t seed) {
+  VarianceEstimate out;
+  out.shifts = shifts;
+  if (edges < 1) return out;
+  double se2 = 0.0;
+  for (int e = 0; e < edges; ++e) {
+    const double offset = edges == 1 ? 0.0 : 0.5 * (e + 0.5) / edges - 0.25;
+    const StepIntegrand f(normal_deg, offset);
+    const VarianceEstimate v = CranleyPattersonVariance(points, f, f.Integral(), shifts, seed);
+    out.variance += v.variance / edges;
+    se2 += v.std_error * v.std_error;
+  }
+  out.std_error = std::sqrt(se2) / edges;
   return out;
 }
 

@@ -22,6 +22,14 @@ VarianceEstimate CranleyPattersonVariance(const PointSet& points,
                                           const std::function<double(const Point2&)>& f,
                                           double reference, int shifts, uint64_t seed);
 
+// The mean CP variance over a family of `edges` parallel step edges with
+// normal `normal_deg` (core/step_integrand.h), at offsets spread evenly over
+// [-1/4, 1/4] along the normal, all with the same shifts. One edge is the
+// edge through the centre. Averaging over edge positions keeps the figure a
+// property of the set rather than of one lucky or unlucky edge.
+VarianceEstimate StepEdgeVariance(const PointSet& points, double normal_deg, int edges, int shifts,
+                                  uint64_t seed);
+
 // Least-squares slope of log(variance) against log(N).
 double LogLogSlope(const std::vector<double>& n, const std::vector<double>& variance);
 
