@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# The main job: installs dependencies, builds, optimizes a direction-aligned
-# point set and shows what it achieved against Owen-scrambled Sobol.
+# The main job: installs dependencies, builds everything, starts alignset-server
+# on its embedded SQLite default, requests an aligned set through the client,
+# shows what it got (quality against Owen-scrambled Sobol), asks again to show
+# the cache hit, and stops the server cleanly.
+#
+#   N=4096 THETA=120 scripts/quickstart.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -8,6 +12,38 @@ bash scripts/build.sh
 BUILD_DIR="${BUILD_DIR:-build}"
 N="${N:-1024}"
 THETA="${THETA:-30}"
-OUT="${OUT:-$BUILD_DIR/aligned-$N-$THETA.txt}"
-"$BUILD_DIR/client/alignset" optimize --n "$N" --dir "$THETA" --out "$OUT"
-"$BUILD_DIR/client/alignset" evaluate "$OUT" --normal "$THETA"
+OUT="${OUT:-$BUILD_DIR/quickstart-n$N-theta$THETA.txt}"
+SERVER="$BUILD_DIR/server/alignset-server"
+CLI="$BUILD_DIR/client/alignset"
+
+PORT_FILE="$(mktemp)"
+LOG="$BUILD_DIR/quickstart-server.log"
+# Port 0: the kernel picks a free loopback port, so a server already running
+# on the default port does not get in the way.
+"$SERVER" --listen 127.0.0.1:0 --port-file "$PORT_FILE" >"$LOG" 2>&1 &
+SERVER_PID=$!
+stop_server() {
+  kill -TERM "$SERVER_PID" 2>/dev/null || true
+  wait "$SERVER_PID" 2>/dev/null || true
+  rm -f "$PORT_FILE"
+}
+trap stop_server EXIT
+for _ in $(seq 1 100); do
+  [ -s "$PORT_FILE" ] && break
+  kill -0 "$SERVER_PID" 2>/dev/null || { cat "$LOG"; exit 1; }
+  sleep 0.1
+done
+ADDR="127.0.0.1:$(cat "$PORT_FILE")"
+echo "alignset-server listening on $ADDR (log: $LOG)"
+
+echo
+echo "== request: $N points, spectral direction $THETA deg (edge normal)"
+time "$CLI" get --server "$ADDR" --n "$N" --dir "$THETA" --out "$OUT"
+echo
+echo "== what it achieved"
+"$CLI" evaluate "$OUT" --normal "$THETA"
+echo
+echo "== the same request again (cache hit)"
+time "$CLI" get --server "$ADDR" --n "$N" --dir "$THETA" --out "$OUT"
+echo
+"$CLI" stats --server "$ADDR"
