@@ -8,7 +8,8 @@
 
 namespace alignset {
 
-FastEngine::FastEngine(int threads, double tolerance) : pool_(threads), kernel_(tolerance) {}
+FastEngine::FastEngine(int threads, double tolerance)
+    : pool_(threads), kernel_(tolerance), scratch_(static_cast<size_t>(pool_.size())) {}
 
 FastEngine::~FastEngine() = default;
 
@@ -21,6 +22,9 @@ size_t FastEngine::grid_cells() const {
 void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
   k_ = k;
   grids_.clear();
+  grid_of_.assign(k_.size(), 0);
+  w1_of_.assign(k_.size(), 0);
+  w2_of_.assign(k_.size(), 0);
   // Cost model of one piece, in rough nanoseconds: spreading and
   // interpolation (3 w^2 multiply-adds per point: one real, one complex
   // pass) plus 2 w kernel values per point, against the FFTs and the grid
@@ -48,41 +52,106 @@ void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
     for (uint32_t i : piece.members) {
       piece.w1.push_back(static_cast<int32_t>(fp.box.basis.W1(k_[i].a, k_[i].b)));
       piece.w2.push_back(static_cast<int32_t>(fp.box.basis.W2(k_[i].a, k_[i].b)));
+      grid_of_[i] = static_cast<uint32_t>(grids_.size());
+      w1_of_[i] = piece.w1.back();
+      w2_of_[i] = piece.w2.back();
     }
     grids_.push_back(std::move(piece));
   }
 }
 
+void FastEngine::RunBalanced(const std::vector<size_t>& weights,
+                             const std::function<void(size_t, int)>& fn) {
+  std::vector<size_t> prefix(weights.size() + 1, 0);
+  for (size_t j = 0; j < weights.size(); ++j) prefix[j + 1] = prefix[j] + weights[j];
+  const size_t workers = static_cast<size_t>(pool_.size());
+  pool_.ParallelFor(workers, [&](size_t begin, size_t end, int worker) {
+    for (size_t w = begin; w < end; ++w) {
+      // Jobs whose first unit of weight falls in this worker's share.
+      const size_t lo = prefix.back() * w / workers, hi = prefix.back() * (w + 1) / workers;
+      const size_t first = static_cast<size_t>(
+          std::lower_bound(prefix.begin(), prefix.end() - 1, lo) - prefix.begin());
+      const size_t last = w + 1 == workers
+                              ? weights.size()
+                              : static_cast<size_t>(std::lower_bound(prefix.begin(),
+                                                                     prefix.end() - 1, hi) -
+                                                    prefix.begin());
+      for (size_t j = first; j < last; ++j) fn(j, worker);
+    }
+  });
+}
+
+void FastEngine::RunOverGrids(size_t count,
+                              const std::function<void(size_t, size_t, size_t, int)>& fn) {
+  pool_.ParallelFor(count * grids_.size(), [&](size_t begin, size_t end, int worker) {
+    while (begin < end) {
+      const size_t g = begin / count;
+      const size_t local = begin - g * count;
+      const size_t stop = std::min(end - g * count, count);
+      fn(g, local, stop, worker);
+      begin = g * count + stop;
+    }
+  });
+}
+
 void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
   const size_t n = points.size();
   const size_t nk = k_.size();
-  out->spectrum.assign(nk, {0.0, 0.0});
+  out->spectrum.resize(nk);
   out->gradient.clear();
-  if (with_gradient) out->gradient.assign(n, {0.0, 0.0});
   out->loss = 0.0;
-  if (nk == 0 || n == 0) return;
+  if (nk == 0 || n == 0) {
+    std::fill(out->spectrum.begin(), out->spectrum.end(), std::complex<double>(0.0));
+    if (with_gradient) out->gradient.assign(n, {0.0, 0.0});
+    return;
+  }
 
+  // Type 1. Every stage is one parallel loop across all grids.
   const size_t w = static_cast<size_t>(kernel_.width());
   const bool keep = n * grids_.size() * 2 * w * sizeof(double) <= kWeightBudgetBytes;
-  for (Piece& p : grids_) p.grid->Prepare(points, keep, pool_);
-  for (Piece& p : grids_) p.grid->Spread(pool_);
-  pool_.ParallelFor(grids_.size(), [&](size_t begin, size_t end, int) {
-    for (size_t g = begin; g < end; ++g) grids_[g].grid->TransformSpread();
+  for (Piece& p : grids_) p.grid->Resize(n, keep);
+  pool_.ParallelFor(n, [&](size_t begin, size_t end, int) {
+    for (Piece& p : grids_) p.grid->MapPoints(points, begin, end);
   });
-  for (const Piece& p : grids_) {
-    pool_.ParallelFor(p.members.size(), [&](size_t begin, size_t end, int) {
-      for (size_t i = begin; i < end; ++i) {
-        out->spectrum[p.members[i]] = p.grid->Mode(p.w1[i], p.w2[i]);
-      }
+  pool_.ParallelFor(grids_.size(), [&](size_t begin, size_t end, int) {
+    for (size_t g = begin; g < end; ++g) grids_[g].grid->SortIntoSlabs();
+  });
+  if (keep) {
+    RunOverGrids(n, [&](size_t g, size_t begin, size_t end, int) {
+      grids_[g].grid->ComputeWeights(begin, end);
     });
   }
+  for (int parity = 0; parity < 2; ++parity) {
+    std::vector<std::pair<uint32_t, int>> jobs;  // (grid, slab)
+    std::vector<size_t> weights;
+    for (size_t g = 0; g < grids_.size(); ++g) {
+      const NufftGrid& grid = *grids_[g].grid;
+      for (int s = parity; s < grid.slabs(); s += 2) {
+        jobs.push_back({static_cast<uint32_t>(g), s});
+        weights.push_back(grid.SlabEnd(s) - grid.SlabBegin(s));
+      }
+    }
+    RunBalanced(weights, [&](size_t j, int worker) {
+      NufftGrid& grid = *grids_[jobs[j].first].grid;
+      grid.SpreadRange(grid.SlabBegin(jobs[j].second), grid.SlabEnd(jobs[j].second),
+                       &scratch_[static_cast<size_t>(worker)]);
+    });
+  }
+  pool_.ParallelFor(grids_.size(), [&](size_t begin, size_t end, int) {
+    for (size_t g = begin; g < end; ++g) grids_[g].grid->FinishSpread();
+  });
+  pool_.ParallelFor(nk, [&](size_t begin, size_t end, int) {
+    for (size_t i = begin; i < end; ++i) {
+      out->spectrum[i] = grids_[grid_of_[i]].grid->Mode(w1_of_[i], w2_of_[i]);
+    }
+  });
   double power = 0.0;
   for (const std::complex<double>& f : out->spectrum) power += std::norm(f);
   const double dn = static_cast<double>(n);
   out->loss = power / (dn * static_cast<double>(nk));
   if (!with_gradient) return;
 
-  // Over K, sum_v v Im(conj(F_v) e_j(v)) = (1 / 2i) sum over +-K of
+  // Type 2. Over K, sum_v v Im(conj(F_v) e_j(v)) = (1 / 2i) sum over +-K of
   // c(u) e_j(u) with c(u) = u conj(F(u)), F(-v) = conj F(v). Packing both
   // components as h(u) = (u_x + i u_y) conj(F(u)), the type-2 sum
   // T_j = sum over +-K of h(u) e_j(u) equals 2i X_j - 2 Y_j with X_j, Y_j
@@ -98,16 +167,24 @@ void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEv
         p.grid->AddCoefficient(p.w1[i], p.w2[i], dir * std::conj(f));
         p.grid->AddCoefficient(-p.w1[i], -p.w2[i], -dir * f);
       }
-      p.grid->TransformCoefficients();
+      p.grid->FinishCoefficients();
     }
   });
-  sums_.resize(n);
-  std::fill(sums_.begin(), sums_.end(), std::complex<double>(0.0));
-  for (const Piece& p : grids_) p.grid->Interpolate(pool_, sums_.data());
+  sums_.resize(grids_.size());
+  for (auto& s : sums_) s.resize(n);
+  RunOverGrids(n, [&](size_t g, size_t begin, size_t end, int worker) {
+    grids_[g].grid->InterpolateRange(begin, end, sums_[g].data(),
+                                     &scratch_[static_cast<size_t>(worker)]);
+  });
   const double scale = 4.0 * kPi / (dn * static_cast<double>(nk));
-  for (size_t j = 0; j < n; ++j) {
-    out->gradient[j] = {0.5 * scale * sums_[j].imag(), -0.5 * scale * sums_[j].real()};
-  }
+  out->gradient.resize(n);
+  pool_.ParallelFor(n, [&](size_t begin, size_t end, int) {
+    for (size_t j = begin; j < end; ++j) {
+      std::complex<double> t = 0.0;
+      for (const auto& s : sums_) t += s[j];
+      out->gradient[j] = {0.5 * scale * t.imag(), -0.5 * scale * t.real()};
+    }
+  });
 }
 
 }  // namespace alignset

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -55,11 +56,22 @@ class FastEngine final : public SpectralEngine {
     std::vector<int32_t> w1, w2;          // their modes in the grid's basis
   };
 
+  // Runs fn(job, worker) for jobs [0, weights.size()), each worker taking a
+  // contiguous run of jobs of about equal total weight.
+  void RunBalanced(const std::vector<size_t>& weights, const std::function<void(size_t, int)>& fn);
+  // Runs fn(grid, begin, end, worker) over [0, count) of every grid, as one
+  // parallel loop over all grids.
+  void RunOverGrids(size_t count, const std::function<void(size_t, size_t, size_t, int)>& fn);
+
   ThreadPool pool_;
   EsKernel kernel_;
   std::vector<Frequency> k_;
   std::vector<Piece> grids_;
-  std::vector<std::complex<double>> sums_;  // type-2 output per point
+  // Per entry of K: its grid and mode (for the read-out in one loop).
+  std::vector<uint32_t> grid_of_;
+  std::vector<int32_t> w1_of_, w2_of_;
+  std::vector<NufftGrid::Scratch> scratch_;           // one per worker
+  std::vector<std::vector<std::complex<double>>> sums_;  // type-2 output, per grid
 };
 
 }  // namespace alignset

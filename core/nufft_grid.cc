@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
-#include <type_traits>
 
 namespace alignset {
 namespace {
@@ -20,30 +19,6 @@ std::mutex& FftwPlannerLock() {
 
 // Slabs per grid at most: enough to balance any thread count in use here.
 constexpr int kMaxSlabs = 256;
-
-// Calls f(std::integral_constant<int, W>) for the runtime width w, so the
-// inner loops are compiled for each width and fully unrolled.
-template <typename F>
-void DispatchWidth(int w, F&& f) {
-  switch (w) {
-    case 2: return f(std::integral_constant<int, 2>{});
-    case 3: return f(std::integral_constant<int, 3>{});
-    case 4: return f(std::integral_constant<int, 4>{});
-    case 5: return f(std::integral_constant<int, 5>{});
-    case 6: return f(std::integral_constant<int, 6>{});
-    case 7: return f(std::integral_constant<int, 7>{});
-    case 8: return f(std::integral_constant<int, 8>{});
-    case 9: return f(std::integral_constant<int, 9>{});
-    case 10: return f(std::integral_constant<int, 10>{});
-    case 11: return f(std::integral_constant<int, 11>{});
-    case 12: return f(std::integral_constant<int, 12>{});
-    case 13: return f(std::integral_constant<int, 13>{});
-    case 14: return f(std::integral_constant<int, 14>{});
-    case 15: return f(std::integral_constant<int, 15>{});
-    default: return f(std::integral_constant<int, 16>{});
-  }
-}
-static_assert(EsKernel::kMaxWidth == 16, "DispatchWidth covers widths 2..16");
 
 inline int WrapIndex(int64_t i, int n) {
   int64_t r = i % n;
@@ -78,7 +53,7 @@ int NufftGridSize(int64_t m, const EsKernel& kernel) {
 }
 
 NufftGrid::NufftGrid(const BasisBox& box, const EsKernel& kernel)
-    : box_(box), kernel_(kernel), width_(kernel.width()) {
+    : box_(box), kernel_(kernel), loops_(SelectedNufftLoops()), width_(kernel.width()) {
   n1_ = NufftGridSize(box.m1, kernel);
   n2_ = NufftGridSize(box.m2, kernel);
   stride_ = n2_ + width_ - 1;
@@ -90,8 +65,8 @@ NufftGrid::NufftGrid(const BasisBox& box, const EsKernel& kernel)
   for (double v : phi1) inv_phi_hat1_.push_back(1.0 / v);
   for (double v : phi2) inv_phi_hat2_.push_back(1.0 / v);
 
-  spread_.assign(static_cast<size_t>(n1_) * stride_, 0.0);
-  gather_.assign(static_cast<size_t>(n1_) * stride_, 0.0);
+  spread_.assign(static_cast<size_t>(n1_ + width_ - 1) * stride_, 0.0);
+  gather_.assign(static_cast<size_t>(n1_ + width_ - 1) * stride_, 0.0);
   const size_t cells = static_cast<size_t>(n1_) * n2_;
   const size_t half = static_cast<size_t>(n1_) * (n2_ / 2 + 1);
   fft_real_ = static_cast<double*>(fftw_malloc(sizeof(double) * cells));
@@ -118,123 +93,101 @@ NufftGrid::~NufftGrid() {
   fftw_free(fft_full_);
 }
 
-void NufftGrid::Prepare(const PointSet& points, bool keep_weights, ThreadPool& pool) {
-  count_ = points.size();
+void NufftGrid::Resize(size_t count, bool keep_weights) {
+  count_ = count;
+  keep_weights_ = keep_weights;
+  mapped1_.resize(count);
+  mapped2_.resize(count);
+  slab_of_.resize(count);
+  order_.resize(count);
+  x1_.resize(count);
+  x2_.resize(count);
+  const size_t kept = keep_weights ? count : 0;
+  k1_.resize(kept * width_);
+  k2_.resize(kept * width_);
+  row_.resize(kept);
+  col_.resize(kept);
+}
+
+void NufftGrid::MapPoints(const PointSet& points, size_t begin, size_t end) {
   const LatticeBasis& b = box_.basis;
   const double p1 = static_cast<double>(b.p1), p2 = static_cast<double>(b.p2);
   const double q1 = static_cast<double>(b.q1), q2 = static_cast<double>(b.q2);
-  std::vector<double>& x1 = scratch1_;
-  std::vector<double>& x2 = scratch2_;
-  x1.resize(count_);
-  x2.resize(count_);
-  slab_of_.resize(count_);
-  pool.ParallelFor(count_, [&](size_t begin, size_t end, int) {
-    for (size_t j = begin; j < end; ++j) {
-      const Point2& s = points[j];
-      const double u1 = Wrap01(p1 * s.x + p2 * s.y);
-      const double u2 = Wrap01(q1 * s.x + q2 * s.y);
-      x1[j] = u1 * n1_;
-      x2[j] = u2 * n2_;
-      const int row = WrapIndex(static_cast<int64_t>(std::ceil(x1[j] - 0.5 * width_)), n1_);
-      slab_of_[j] = static_cast<uint16_t>(static_cast<int64_t>(row) * slabs_ / n1_);
-    }
-  });
-  // Stable counting sort into slabs.
+  for (size_t j = begin; j < end; ++j) {
+    const Point2& s = points[j];
+    const double x1 = Wrap01(p1 * s.x + p2 * s.y) * n1_;
+    mapped1_[j] = x1;
+    mapped2_[j] = Wrap01(q1 * s.x + q2 * s.y) * n2_;
+    const int row = WrapIndex(static_cast<int64_t>(std::ceil(x1 - 0.5 * width_)), n1_);
+    slab_of_[j] = static_cast<uint16_t>(static_cast<int64_t>(row) * slabs_ / n1_);
+  }
+}
+
+void NufftGrid::SortIntoSlabs() {
   slab_start_.assign(slabs_ + 1, 0);
   for (size_t j = 0; j < count_; ++j) ++slab_start_[slab_of_[j] + 1];
   for (int s = 0; s < slabs_; ++s) slab_start_[s + 1] += slab_start_[s];
   std::vector<size_t> next(slab_start_.begin(), slab_start_.end() - 1);
-  order_.resize(count_);
-  x1_.resize(count_);
-  x2_.resize(count_);
   for (size_t j = 0; j < count_; ++j) {
     const size_t pos = next[slab_of_[j]]++;
     order_[pos] = static_cast<uint32_t>(j);
-    x1_[pos] = x1[j];
-    x2_[pos] = x2[j];
+    x1_[pos] = mapped1_[j];
+    x2_[pos] = mapped2_[j];
   }
-  weights_kept_ = false;
-  if (!keep_weights) {
-    k1_.clear();
-    k2_.clear();
-    row_.clear();
-    col_.clear();
+  std::fill(spread_.begin(), spread_.end(), 0.0);
+}
+
+void NufftGrid::ComputeWeights(size_t begin, size_t end) {
+  if (begin >= end) return;
+  const size_t w = static_cast<size_t>(width_);
+  loops_.weights(kernel_.coefficients(), kernel_.degree(), width_, &x1_[begin], end - begin, n1_,
+                 &k1_[begin * w], &row_[begin]);
+  loops_.weights(kernel_.coefficients(), kernel_.degree(), width_, &x2_[begin], end - begin, n2_,
+                 &k2_[begin * w], &col_[begin]);
+}
+
+void NufftGrid::BlockWeights(size_t begin, size_t end, Scratch* scratch) const {
+  const size_t w = static_cast<size_t>(width_);
+  scratch->k1.resize(kScratchBlock * w);
+  scratch->k2.resize(kScratchBlock * w);
+  scratch->row.resize(kScratchBlock);
+  scratch->col.resize(kScratchBlock);
+  loops_.weights(kernel_.coefficients(), kernel_.degree(), width_, &x1_[begin], end - begin, n1_,
+                 scratch->k1.data(), scratch->row.data());
+  loops_.weights(kernel_.coefficients(), kernel_.degree(), width_, &x2_[begin], end - begin, n2_,
+                 scratch->k2.data(), scratch->col.data());
+}
+
+void NufftGrid::SpreadRange(size_t begin, size_t end, Scratch* scratch) {
+  if (begin >= end) return;
+  const size_t w = static_cast<size_t>(width_);
+  if (keep_weights_) {
+    loops_.spread(spread_.data(), stride_, width_, &k1_[begin * w], &k2_[begin * w],
+                  &row_[begin], &col_[begin], end - begin);
     return;
   }
-  const size_t w = static_cast<size_t>(width_);
-  k1_.resize(count_ * w);
-  k2_.resize(count_ * w);
-  row_.resize(count_);
-  col_.resize(count_);
-  DispatchWidth(width_, [&](auto wc) {
-    constexpr int W = decltype(wc)::value;
-    pool.ParallelFor(count_, [&](size_t begin, size_t end, int) {
-      for (size_t pos = begin; pos < end; ++pos) {
-        WeightsAt<W>(pos, &k1_[pos * W], &k2_[pos * W], &row_[pos], &col_[pos]);
-      }
-    });
-  });
-  weights_kept_ = true;
-}
-
-template <int W>
-void NufftGrid::WeightsAt(size_t pos, double* k1, double* k2, int* row, int* col) const {
-  *row = WrapIndex(kernel_.Weights<W>(x1_[pos], k1), n1_);
-  *col = WrapIndex(kernel_.Weights<W>(x2_[pos], k2), n2_);
-}
-
-void NufftGrid::Spread(ThreadPool& pool) {
-  std::fill(spread_.begin(), spread_.end(), 0.0);
-  DispatchWidth(width_, [&](auto wc) { SpreadSlabs<decltype(wc)::value>(pool); });
-  // Fold the padding columns back onto the first ones (periodic in w2).
-  const int w = width_;
-  pool.ParallelFor(static_cast<size_t>(n1_), [&](size_t begin, size_t end, int) {
-    for (size_t r = begin; r < end; ++r) {
-      const double* g = &spread_[r * stride_];
-      double* dst = &fft_real_[r * n2_];
-      std::memcpy(dst, g, sizeof(double) * n2_);
-      for (int c = 0; c < w - 1; ++c) dst[c] += g[n2_ + c];
-    }
-  });
-}
-
-template <int W>
-void NufftGrid::SpreadSlabs(ThreadPool& pool) {
-  constexpr int w = W;
-  for (int parity = 0; parity < 2; ++parity) {
-    const size_t jobs = static_cast<size_t>(slabs_ / 2);
-    pool.ParallelFor(jobs, [&](size_t begin, size_t end, int) {
-      double k1_buf[W], k2_buf[W];
-      for (size_t job = begin; job < end; ++job) {
-        const size_t slab = 2 * job + parity;
-        for (size_t pos = slab_start_[slab]; pos < slab_start_[slab + 1]; ++pos) {
-          const double* k1;
-          const double* k2;
-          int row, col;
-          if (weights_kept_) {
-            k1 = &k1_[pos * w];
-            k2 = &k2_[pos * w];
-            row = row_[pos];
-            col = col_[pos];
-          } else {
-            WeightsAt<W>(pos, k1_buf, k2_buf, &row, &col);
-            k1 = k1_buf;
-            k2 = k2_buf;
-          }
-          for (int t1 = 0; t1 < w; ++t1) {
-            int r = row + t1;
-            if (r >= n1_) r -= n1_;
-            double* g = &spread_[static_cast<size_t>(r) * stride_ + col];
-            const double a = k1[t1];
-            for (int t2 = 0; t2 < w; ++t2) g[t2] += a * k2[t2];
-          }
-        }
-      }
-    });
+  for (size_t b = begin; b < end; b += kScratchBlock) {
+    const size_t e = std::min(end, b + kScratchBlock);
+    BlockWeights(b, e, scratch);
+    loops_.spread(spread_.data(), stride_, width_, scratch->k1.data(), scratch->k2.data(),
+                  scratch->row.data(), scratch->col.data(), e - b);
   }
 }
 
-void NufftGrid::TransformSpread() {
+void NufftGrid::FinishSpread() {
+  // Fold the padding rows, then the padding columns, back onto the first
+  // ones (the grid is periodic).
+  for (int r = n1_; r < n1_ + width_ - 1; ++r) {
+    const double* src = &spread_[static_cast<size_t>(r) * stride_];
+    double* dst = &spread_[static_cast<size_t>(r - n1_) * stride_];
+    for (int c = 0; c < stride_; ++c) dst[c] += src[c];
+  }
+  for (int r = 0; r < n1_; ++r) {
+    const double* g = &spread_[static_cast<size_t>(r) * stride_];
+    double* dst = &fft_real_[static_cast<size_t>(r) * n2_];
+    std::memcpy(dst, g, sizeof(double) * n2_);
+    for (int c = 0; c < width_ - 1; ++c) dst[c] += g[n2_ + c];
+  }
   fftw_execute(static_cast<fftw_plan>(plan_r2c_));
 }
 
@@ -261,58 +214,35 @@ void NufftGrid::AddCoefficient(int64_t w1, int64_t w2, std::complex<double> c) {
   fft_full_[static_cast<size_t>(WrapIndex(w1, n1_)) * n2_ + WrapIndex(w2, n2_)] += corr * c;
 }
 
-void NufftGrid::TransformCoefficients() {
+void NufftGrid::FinishCoefficients() {
   fftw_execute(static_cast<fftw_plan>(plan_c2c_));
-  // Padded copy: columns n2 .. n2 + width - 2 repeat the first ones, so the
-  // interpolation reads each row without wrapping.
-  for (int r = 0; r < n1_; ++r) {
-    const std::complex<double>* src = &fft_full_[static_cast<size_t>(r) * n2_];
+  // Padded copy: rows n1 .. n1 + width - 2 and columns n2 .. n2 + width - 2
+  // repeat the first ones, so the interpolation never wraps.
+  for (int r = 0; r < n1_ + width_ - 1; ++r) {
+    const std::complex<double>* src = &fft_full_[static_cast<size_t>(r % n1_) * n2_];
     std::complex<double>* dst = &gather_[static_cast<size_t>(r) * stride_];
     std::copy(src, src + n2_, dst);
     std::copy(src, src + (width_ - 1), dst + n2_);
   }
 }
 
-void NufftGrid::Interpolate(ThreadPool& pool, std::complex<double>* out) const {
-  DispatchWidth(width_, [&](auto wc) { InterpolatePoints<decltype(wc)::value>(pool, out); });
-}
-
-template <int W>
-void NufftGrid::InterpolatePoints(ThreadPool& pool, std::complex<double>* out) const {
-  constexpr int w = W;
-  const double* grid = reinterpret_cast<const double*>(gather_.data());
-  pool.ParallelFor(count_, [&](size_t begin, size_t end, int) {
-    double k1_buf[W], k2_buf[W];
-    for (size_t pos = begin; pos < end; ++pos) {
-      const double* k1;
-      const double* k2;
-      int row, col;
-      if (weights_kept_) {
-        k1 = &k1_[pos * w];
-        k2 = &k2_[pos * w];
-        row = row_[pos];
-        col = col_[pos];
-      } else {
-        WeightsAt<W>(pos, k1_buf, k2_buf, &row, &col);
-        k1 = k1_buf;
-        k2 = k2_buf;
-      }
-      double re = 0.0, im = 0.0;
-      for (int t1 = 0; t1 < w; ++t1) {
-        int r = row + t1;
-        if (r >= n1_) r -= n1_;
-        const double* g = grid + 2 * (static_cast<size_t>(r) * stride_ + col);
-        double sr = 0.0, si = 0.0;
-        for (int t2 = 0; t2 < w; ++t2) {
-          sr += k2[t2] * g[2 * t2];
-          si += k2[t2] * g[2 * t2 + 1];
-        }
-        re += k1[t1] * sr;
-        im += k1[t1] * si;
-      }
-      out[order_[pos]] += std::complex<double>(re, im);
+void NufftGrid::InterpolateRange(size_t begin, size_t end, std::complex<double>* by_point,
+                                 Scratch* scratch) const {
+  const size_t w = static_cast<size_t>(width_);
+  std::complex<double> values[kScratchBlock];
+  for (size_t b = begin; b < end; b += kScratchBlock) {
+    const size_t e = std::min(end, b + kScratchBlock);
+    if (keep_weights_) {
+      loops_.interpolate(gather_.data(), stride_, width_, &k1_[b * w], &k2_[b * w], &row_[b],
+                         &col_[b], e - b, values);
+    } else {
+      BlockWeights(b, e, scratch);
+      loops_.interpolate(gather_.data(), stride_, width_, scratch->k1.data(),
+                         scratch->k2.data(), scratch->row.data(), scratch->col.data(), e - b,
+                         values);
     }
-  });
+    for (size_t pos = b; pos < e; ++pos) by_point[order_[pos]] = values[pos - b];
+  }
 }
 
 }  // namespace alignset

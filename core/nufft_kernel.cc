@@ -47,7 +47,7 @@ void GaussLegendre(int count, std::vector<double>* nodes, std::vector<double>* w
 
 void EsKernel::BuildPolynomials() {
   // Tap t at offset y in [-1, 1] sits at z = (y + width - 1) / 2 - t.
-  degree_ = std::min(width_ + 4, kMaxDegree);
+  degree_ = std::min(TapPolynomialDegree(width_), kMaxDegree);
   const int nodes = degree_ + 1;
   coefficients_.assign(static_cast<size_t>(degree_ + 1) * width_, 0.0);
   // Monomial coefficients of the Chebyshev polynomials T_0 .. T_degree.

@@ -11,6 +11,10 @@ namespace alignset {
 // used on grids oversampled by kOversampling. Its width follows the requested
 // relative tolerance: each extra grid point of support buys about one decimal
 // digit.
+// Degree of the polynomial that stands for each kernel tap (see
+// EsKernel::Weights): accurate to ~1/20 of the tolerance the width stands for.
+constexpr int TapPolynomialDegree(int width) { return width + 4; }
+
 class EsKernel {
  public:
   static constexpr int kOversampling = 2;
@@ -39,8 +43,10 @@ class EsKernel {
   template <int W>
   int Weights(double x, double* values) const;
 
-  // Degree of the tap polynomials.
+  // The tap polynomials: coefficients()[d * width + t] multiplies y^d for
+  // tap t, d = 0 .. degree(), y = 2 (x - first) - width + 1 in [-1, 1].
   int degree() const { return degree_; }
+  const double* coefficients() const { return coefficients_.data(); }
 
   // The same by direct evaluation of phi (reference for the polynomial).
   int ExactWeights(double x, double* values) const;

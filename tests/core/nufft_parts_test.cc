@@ -10,6 +10,7 @@
 #include "core/lattice_basis.h"
 #include "core/nufft_grid.h"
 #include "core/nufft_kernel.h"
+#include "core/nufft_loops.h"
 
 namespace alignset {
 namespace {
@@ -139,6 +140,77 @@ TEST(FrequencyPartitionTest, FindsTheDiskAndOnePiecePerStrip) {
   }
   // All boxes together hold a small multiple of +-K.
   EXPECT_LT(cells, 4.0 * 2.0 * static_cast<double>(k.size()));
+}
+
+}  // namespace
+}  // namespace alignset
+
+namespace alignset {
+namespace {
+
+TEST(NufftLoopsTest, SelectedVariantAgreesWithGeneric) {
+  const NufftLoops& fast = SelectedNufftLoops();
+  const NufftLoops& generic = GenericNufftLoops();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (double tol : {1e-5, 1e-9}) {
+    const EsKernel kernel(tol);
+    const int w = kernel.width();
+    const int n1 = 40, n2 = 30;
+    const size_t count = 37;  // not a multiple of the lane count
+    std::vector<double> x1(count), x2(count);
+    for (size_t i = 0; i < count; ++i) {
+      x1[i] = u(rng) * n1;
+      x2[i] = u(rng) * n2;
+    }
+    std::vector<double> ka(count * w), kb(count * w), k2(count * w);
+    std::vector<int> ra(count), rb(count), col(count);
+    fast.weights(kernel.coefficients(), kernel.degree(), w, x1.data(), count, n1, ka.data(),
+                 ra.data());
+    generic.weights(kernel.coefficients(), kernel.degree(), w, x1.data(), count, n1, kb.data(),
+                    rb.data());
+    fast.weights(kernel.coefficients(), kernel.degree(), w, x2.data(), count, n2, k2.data(),
+                 col.data());
+    for (size_t i = 0; i < count; ++i) {
+      ASSERT_EQ(ra[i], rb[i]);
+      double exact[EsKernel::kMaxWidth];
+      const int first = kernel.ExactWeights(x1[i], exact);
+      EXPECT_EQ(ra[i], ((first % n1) + n1) % n1);
+      for (int t = 0; t < w; ++t) {
+        EXPECT_NEAR(ka[i * w + t], kb[i * w + t], 1e-14);
+        EXPECT_NEAR(ka[i * w + t], exact[t], 0.1 * tol);
+      }
+    }
+    // Spread then interpolate on a padded grid: both variants agree.
+    const size_t stride = n2 + w - 1, rows = n1 + w - 1;
+    std::vector<double> ga(rows * stride, 0.0), gb(rows * stride, 0.0);
+    fast.spread(ga.data(), stride, w, ka.data(), k2.data(), ra.data(), col.data(), count);
+    generic.spread(gb.data(), stride, w, ka.data(), k2.data(), ra.data(), col.data(), count);
+    double total = 0.0;
+    for (size_t c = 0; c < ga.size(); ++c) {
+      EXPECT_NEAR(ga[c], gb[c], 1e-13);
+      total += ga[c];
+    }
+    // Each point spreads the product of its row and column weight sums.
+    double want = 0.0;
+    for (size_t i = 0; i < count; ++i) {
+      double s1 = 0.0, s2 = 0.0;
+      for (int t = 0; t < w; ++t) {
+        s1 += ka[i * w + t];
+        s2 += k2[i * w + t];
+      }
+      want += s1 * s2;
+    }
+    EXPECT_NEAR(total, want, 1e-11 * want);
+    std::vector<std::complex<double>> cg(rows * stride);
+    for (auto& c : cg) c = {u(rng), u(rng)};
+    std::vector<std::complex<double>> oa(count), ob(count);
+    fast.interpolate(cg.data(), stride, w, ka.data(), k2.data(), ra.data(), col.data(), count,
+                     oa.data());
+    generic.interpolate(cg.data(), stride, w, ka.data(), k2.data(), ra.data(), col.data(), count,
+                        ob.data());
+    for (size_t i = 0; i < count; ++i) EXPECT_LT(std::abs(oa[i] - ob[i]), 1e-13);
+  }
 }
 
 }  // namespace
