@@ -8,8 +8,11 @@
 
 namespace alignset {
 
-FastEngine::FastEngine(int threads, double tolerance)
-    : pool_(threads), kernel_(tolerance), scratch_(static_cast<size_t>(pool_.size())) {}
+FastEngine::FastEngine(int threads, double tolerance, size_t weight_budget_bytes)
+    : pool_(threads),
+      kernel_(tolerance),
+      weight_budget_bytes_(weight_budget_bytes),
+      scratch_(static_cast<size_t>(pool_.size())) {}
 
 FastEngine::~FastEngine() = default;
 
@@ -108,7 +111,7 @@ void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEv
 
   // Type 1. Every stage is one parallel loop across all grids.
   const size_t w = static_cast<size_t>(kernel_.width());
-  const bool keep = n * grids_.size() * 2 * w * sizeof(double) <= kWeightBudgetBytes;
+  const bool keep = n * grids_.size() * 2 * w * sizeof(double) <= weight_budget_bytes_;
   for (Piece& p : grids_) p.grid->Resize(n, keep);
   pool_.ParallelFor(n, [&](size_t begin, size_t end, int) {
     for (Piece& p : grids_) p.grid->MapPoints(points, begin, end);

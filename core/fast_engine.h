@@ -37,7 +37,10 @@ class FastEngine final : public SpectralEngine {
   static constexpr double kDefaultTolerance = 1e-9;
   static constexpr size_t kWeightBudgetBytes = size_t{256} << 20;
 
-  explicit FastEngine(int threads, double tolerance = kDefaultTolerance);
+  // weight_budget_bytes: above this, kernel weights are recomputed in the
+  // type-2 pass instead of kept from the type-1 pass (large N).
+  explicit FastEngine(int threads, double tolerance = kDefaultTolerance,
+                      size_t weight_budget_bytes = kWeightBudgetBytes);
   ~FastEngine() override;
   std::string name() const override { return "fast"; }
   void SetFrequencies(const std::vector<Frequency>& k) override;
@@ -65,6 +68,7 @@ class FastEngine final : public SpectralEngine {
 
   ThreadPool pool_;
   EsKernel kernel_;
+  size_t weight_budget_bytes_;
   std::vector<Frequency> k_;
   std::vector<Piece> grids_;
   // Per entry of K: its grid and mode (for the read-out in one loop).

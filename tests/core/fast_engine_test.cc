@@ -179,6 +179,22 @@ TEST(FastEngineTest, ResultsDoNotDependOnTheThreadCount) {
   EXPECT_EQ(one.loss, three.loss);
 }
 
+TEST(FastEngineTest, RecomputedWeightsGiveTheSameResult) {
+  // Large N recomputes the kernel weights in the type-2 pass instead of
+  // keeping them; a zero budget forces that path.
+  const std::vector<Frequency> k =
+      BuildFrequencySet(DefaultFrequencyParams(3000), AnisotropyDirections({125.0}));
+  const PointSet points = WhiteNoise(3000, 8);
+  FastEngine kept(2), recomputed(2, FastEngine::kDefaultTolerance, 0);
+  kept.SetFrequencies(k);
+  recomputed.SetFrequencies(k);
+  SpectrumEvaluation a, b;
+  kept.Evaluate(points, true, &a);
+  recomputed.Evaluate(points, true, &b);
+  for (size_t i = 0; i < k.size(); ++i) ASSERT_EQ(a.spectrum[i], b.spectrum[i]);
+  for (size_t j = 0; j < points.size(); ++j) ASSERT_EQ(a.gradient[j], b.gradient[j]);
+}
+
 TEST(FastEngineTest, ReusesPlansAcrossPointSetsAndSizes) {
   // One engine, several evaluations with different point counts.
   const std::vector<Frequency> k =
