@@ -1,7 +1,11 @@
 #include <memory>
 
 #include "core/direct_engine.h"
+#include "core/fast_engine.h"
 #include "core/spectral_engine.h"
+#ifdef ALIGNSET_HAVE_CUDA
+#include "core/cuda/cuda_engine.h"
+#endif
 
 namespace alignset {
 
@@ -23,15 +27,35 @@ std::string EngineKindName(EngineKind kind) {
   return "unknown";
 }
 
+namespace {
+
+StatusOr<std::unique_ptr<SpectralEngine>> MakeCuda(int threads) {
+#ifdef ALIGNSET_HAVE_CUDA
+  return MakeCudaEngine(threads);
+#else
+  (void)threads;
+  return Status::Unavailable(
+      "the CUDA engine is not built in this binary (configure with nvcc available and "
+      "-DALIGNSET_CUDA=AUTO or ON); use --engine fast or direct");
+#endif
+}
+
+}  // namespace
+
 StatusOr<std::unique_ptr<SpectralEngine>> MakeSpectralEngine(EngineKind kind, int threads) {
   switch (kind) {
-    case EngineKind::kAuto:
+    case EngineKind::kAuto: {
+      // The GPU when one is built in and usable, else the fast CPU engine.
+      auto cuda = MakeCuda(threads);
+      if (cuda.ok()) return cuda;
+      return std::unique_ptr<SpectralEngine>(std::make_unique<FastEngine>(threads));
+    }
     case EngineKind::kDirect:
       return std::unique_ptr<SpectralEngine>(std::make_unique<DirectEngine>(threads));
     case EngineKind::kFast:
-      return Status::Unavailable("the fast NUFFT engine is not built yet");
+      return std::unique_ptr<SpectralEngine>(std::make_unique<FastEngine>(threads));
     case EngineKind::kCuda:
-      return Status::Unavailable("the CUDA engine is not built in this binary");
+      return MakeCuda(threads);
   }
   return Status::InvalidArgument("unknown engine kind");
 }
