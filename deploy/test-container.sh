@@ -165,17 +165,29 @@ log "image config ok (user non-root, 50051 exposed, volume, HEALTHCHECK)"
 # --- 4. run the image -------------------------------------------------------------------
 ctr="$(bah from --pull=never "$IMAGE")"
 tmp="$(mktemp -d)"
-server_pid=""
+server_pid=""   # the host's `buildah run`
+inner_pid=""    # alignset-server itself: chroot isolation shares the host's PID namespace
 cleanup() {
-  if [ -n "$server_pid" ] && kill -0 "$server_pid" 2>/dev/null; then
-    kill -TERM "$server_pid" 2>/dev/null || true
-    sleep 2; kill -KILL "$server_pid" 2>/dev/null || true
-  fi
+  local p
+  for p in "$inner_pid" "$server_pid"; do
+    if [ -n "$p" ] && kill -0 "$p" 2>/dev/null; then
+      kill -TERM "$p" 2>/dev/null || true; sleep 2; kill -KILL "$p" 2>/dev/null || true
+    fi
+  done
   bah rm "$ctr" >/dev/null 2>&1 || true
   rm -rf "$tmp"
 }
 trap cleanup EXIT
 crun() { bah run --isolation chroot --network host "$@"; }
+# First descendant of process $1 whose command name is $2.
+descendant() {
+  local kid
+  for kid in $(ps -o pid= --ppid "$1"); do
+    if [ "$(cat "/proc/$kid/comm" 2>/dev/null)" = "$2" ]; then echo "$kid"; return 0; fi
+    descendant "$kid" "$2" && return 0
+  done
+  return 1
+}
 
 whoami_in="$(crun "$ctr" -- id -u)"
 [ "$whoami_in" = 10001 ] || die "container user is uid $whoami_in, expected 10001"
@@ -205,6 +217,8 @@ log "starting alignset-server from the image on $addr (volume $data)"
 crun --env ALIGNSET_LISTEN="$addr" --volume "$data:/var/lib/alignset" "$ctr" -- \
   alignset-server --workers 1 --threads-per-worker 1 > "$tmp/server.log" 2>&1 &
 server_pid=$!
+for _ in $(seq 1 40); do inner_pid="$(descendant "$server_pid" alignset-server)" && break; sleep 0.25; done
+[ -n "$inner_pid" ] || { cat "$tmp/server.log"; die "alignset-server process not found"; }
 
 state=""
 for _ in $(seq 1 60); do
@@ -245,12 +259,16 @@ db="$data/alignset.sqlite"
 [ "$(stat -c %u "$db")" = 10001 ] || die "cache file not owned by uid 10001"
 log "SQLite cache on the volume: $(stat -c %s "$db") bytes, owner uid 10001"
 
-log "stopping the server (SIGTERM)"
-kill -TERM "$server_pid"
+# `buildah run` answers SIGTERM by killing its child outright, so the signal goes to the
+# server itself, as `docker stop` or the kubelet would deliver it.
+log "stopping the server (SIGTERM to pid $inner_pid)"
+kill -TERM "$inner_pid"
 for _ in $(seq 1 40); do kill -0 "$server_pid" 2>/dev/null || break; sleep 0.25; done
 if kill -0 "$server_pid" 2>/dev/null; then
   cat "$tmp/server.log"; die "server did not stop within 10 s of SIGTERM"
 fi
-wait "$server_pid" || true
-server_pid=""
+rc=0; wait "$server_pid" || rc=$?
+server_pid=""; inner_pid=""
+[ "$rc" -eq 0 ] || { cat "$tmp/server.log"; die "server exited with status $rc after SIGTERM"; }
+log "server stopped cleanly"
 log "PASS in $(( $(date +%s) - START )) s"
