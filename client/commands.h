@@ -6,5 +6,15 @@ namespace alignset::cli {
 // exit status; errors are printed as one line on stderr.
 int RunOptimize(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
+#ifdef ALIGNSET_HAVE_STORAGE
+// export / import / merge / verify / list of SQLite cache files.
+int RunCache(int argc, char** argv);
+#endif
+#ifdef ALIGNSET_HAVE_SERVICE
+// Clients of alignset-server (client/service_client.h).
+int RunGet(int argc, char** argv);
+int RunPrecompute(int argc, char** argv);
+int RunStats(int argc, char** argv);
+#endif
 
 }  // namespace alignset::cli

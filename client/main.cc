@@ -17,6 +17,22 @@ void PrintUsage() {
                "  evaluate  FILE --normal DEG [--shifts K] [--seed S]\n"
                "            CP-rotated variance on a step edge and strip periodograms,\n"
                "            beside an Owen-scrambled Sobol set of the same N\n");
+#ifdef ALIGNSET_HAVE_STORAGE
+  std::fprintf(stderr,
+               "  cache     export|import|merge|verify|list ...\n"
+               "            maintain SQLite cache files ('alignset cache help')\n");
+#endif
+#ifdef ALIGNSET_HAVE_SERVICE
+  std::fprintf(stderr,
+               "  get        --n N --dir DEG [--dir DEG] --out FILE [--quiet]\n"
+               "             an aligned set from alignset-server (.npy or UTK text by extension)\n"
+               "  precompute --n N[,N...] [--space 1dir|2dir|keys] [--key DEG[,DEG]] [--shard i/M]\n"
+               "             fill the server's cache, with progress and ETA (re-run resumes)\n"
+               "  stats      [--list [--n N] [--limit K]]\n"
+               "             the server's cache contents and metrics\n"
+               "  server options: --server ADDR (default $ALIGNSET_SERVER or 127.0.0.1:50051)\n"
+               "             --tls-ca FILE --tls-server-name NAME --token-file FILE --timeout S\n");
+#endif
 }
 
 }  // namespace
@@ -30,6 +46,14 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   if (cmd == "optimize") return alignset::cli::RunOptimize(argc - 2, argv + 2);
   if (cmd == "evaluate") return alignset::cli::RunEvaluate(argc - 2, argv + 2);
+#ifdef ALIGNSET_HAVE_STORAGE
+  if (cmd == "cache") return alignset::cli::RunCache(argc - 2, argv + 2);
+#endif
+#ifdef ALIGNSET_HAVE_SERVICE
+  if (cmd == "get") return alignset::cli::RunGet(argc - 2, argv + 2);
+  if (cmd == "precompute") return alignset::cli::RunPrecompute(argc - 2, argv + 2);
+  if (cmd == "stats") return alignset::cli::RunStats(argc - 2, argv + 2);
+#endif
   std::fprintf(stderr, "alignset: unknown command '%s' (try 'alignset --help')\n", cmd.c_str());
   return 2;
 }

@@ -31,6 +31,13 @@ struct SetKey {
   friend bool operator==(const SetKey&, const SetKey&) = default;
 };
 
+// Checks a key at the boundary: n in [kMinPoints, kMaxPoints]; count 1 with
+// phi1 in [0, 45] and phi2 == phi1, or count 2 with 0 <= phi1 <= phi2 < 180;
+// profile 1..64 characters of [A-Za-z0-9._-].
+Status ValidateKey(const SetKey& key);
+// "n=4096 dirs=1:30 profile=0123456789abcdef", for messages and logs.
+std::string KeyToString(const SetKey& key);
+
 struct SetRecord {
   SetKey key;
   PointSet points;  // the canonical (unaligned) set
@@ -39,6 +46,19 @@ struct SetRecord {
   double optimize_seconds = 0.0;
   std::string engine;
   int64_t created_unix = 0;
+  int algorithm_version = kAlgorithmVersion;
+};
+
+// A record without its points, for listings (reads no blob).
+struct SetSummary {
+  SetKey key;
+  LossTerms loss;
+  int iterations = 0;
+  double optimize_seconds = 0.0;
+  std::string engine;
+  int64_t created_unix = 0;
+  int algorithm_version = 0;
+  int64_t bytes = 0;  // blob size
 };
 
 struct CacheStats {
@@ -61,12 +81,16 @@ struct MergeReport {
 
 // The SQLite cache of canonical sets: WAL mode, busy timeout, schema version
 // table with migrations, one transaction per written set, a checksum over
-// every blob verified on read. Thread-safe.
+// every blob verified on read. Thread-safe (one connection behind a mutex;
+// Verify and MergeFrom's source reads use their own read-only connections).
 class SetCache {
  public:
   struct Options {
     bool read_only = false;
     int busy_timeout_ms = 5000;
+    // synchronous=FULL instead of NORMAL: also survives power loss without
+    // losing the last commits (a process crash loses nothing either way).
+    bool full_sync = false;
   };
   static StatusOr<std::unique_ptr<SetCache>> Open(const std::string& path, const Options& options);
   static StatusOr<std::unique_ptr<SetCache>> Open(const std::string& path) {
@@ -83,6 +107,10 @@ class SetCache {
   // Keys (optionally for one N / one profile), in (n, count, phi1, phi2) order.
   virtual StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n = std::nullopt,
                                              std::optional<std::string> profile = std::nullopt) = 0;
+  // Like List, with each row's metadata. The default implementation is built
+  // on List + Get (so fakes need not override it); SQLite reads no blob.
+  virtual StatusOr<std::vector<SetSummary>> ListSummaries(
+      std::optional<uint32_t> n = std::nullopt, std::optional<std::string> profile = std::nullopt);
   virtual StatusOr<CacheStats> Stats() = 0;
   // Re-reads every blob and checks its checksum.
   virtual StatusOr<VerifyReport> Verify() = 0;

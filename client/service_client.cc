@@ -1,0 +1,360 @@
+#include "client/service_client.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <bit>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "alignset/v1/alignset.grpc.pb.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+
+namespace alignset::cli {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the wire format is little-endian float64; add a byte swap for this host");
+
+const char* CodeName(grpc::StatusCode c) {
+  switch (c) {
+    case grpc::StatusCode::OK: return "OK";
+    case grpc::StatusCode::CANCELLED: return "CANCELLED";
+    case grpc::StatusCode::UNKNOWN: return "UNKNOWN";
+    case grpc::StatusCode::INVALID_ARGUMENT: return "INVALID_ARGUMENT";
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return "DEADLINE_EXCEEDED";
+    case grpc::StatusCode::NOT_FOUND: return "NOT_FOUND";
+    case grpc::StatusCode::ALREADY_EXISTS: return "ALREADY_EXISTS";
+    case grpc::StatusCode::PERMISSION_DENIED: return "PERMISSION_DENIED";
+    case grpc::StatusCode::RESOURCE_EXHAUSTED: return "RESOURCE_EXHAUSTED";
+    case grpc::StatusCode::FAILED_PRECONDITION: return "FAILED_PRECONDITION";
+    case grpc::StatusCode::ABORTED: return "ABORTED";
+    case grpc::StatusCode::OUT_OF_RANGE: return "OUT_OF_RANGE";
+    case grpc::StatusCode::UNIMPLEMENTED: return "UNIMPLEMENTED";
+    case grpc::StatusCode::INTERNAL: return "INTERNAL";
+    case grpc::StatusCode::UNAVAILABLE: return "UNAVAILABLE";
+    case grpc::StatusCode::DATA_LOSS: return "DATA_LOSS";
+    case grpc::StatusCode::UNAUTHENTICATED: return "UNAUTHENTICATED";
+    default: return "UNKNOWN";
+  }
+}
+
+Status FromGrpc(const grpc::Status& s, const std::string& address) {
+  if (s.ok()) return Status::Ok();
+  std::string m = std::string(CodeName(s.error_code())) + ": " + s.error_message();
+  if (s.error_code() == grpc::StatusCode::UNAVAILABLE) m += " (server " + address + ")";
+  switch (s.error_code()) {
+    case grpc::StatusCode::INVALID_ARGUMENT:
+    case grpc::StatusCode::OUT_OF_RANGE:
+    case grpc::StatusCode::UNAUTHENTICATED:
+    case grpc::StatusCode::PERMISSION_DENIED:
+    case grpc::StatusCode::FAILED_PRECONDITION: return Status::InvalidArgument(m);
+    case grpc::StatusCode::NOT_FOUND: return Status::NotFound(m);
+    case grpc::StatusCode::RESOURCE_EXHAUSTED: return Status::ResourceExhausted(m);
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return Status::DeadlineExceeded(m);
+    case grpc::StatusCode::UNAVAILABLE: return Status::Unavailable(m);
+    case grpc::StatusCode::CANCELLED:
+    case grpc::StatusCode::ABORTED: return Status::Cancelled(m);
+    case grpc::StatusCode::DATA_LOSS: return Status::DataLoss(m);
+    default: return Status::Internal(m);
+  }
+}
+
+SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
+  SetInfo i;
+  i.requested_deg.assign(md.requested_deg().begin(), md.requested_deg().end());
+  i.served_deg.assign(md.served_deg().begin(), md.served_deg().end());
+  i.n = n;
+  i.direction_count = static_cast<int>(md.key().direction_count());
+  i.phi1 = md.key().phi1_deg();
+  i.phi2 = md.key().phi2_deg();
+  i.profile = md.key().profile();
+  i.key_index = md.key().index();
+  i.key_text = md.key().text();
+  i.swapped = md.swapped();
+  i.inverted = md.inverted();
+  i.inverted_y = md.inverted_y();
+  i.loss_total = md.loss().total();
+  i.loss_spectrum = md.loss().spectrum();
+  i.loss_sw = md.loss().sliced_wasserstein();
+  i.length = md.parameters().length();
+  i.width = md.parameters().width();
+  i.radius = md.parameters().radius();
+  i.max_iterations = md.parameters().max_iterations();
+  i.learning_rate = md.parameters().learning_rate();
+  i.sw_weight = md.parameters().sw_weight();
+  i.seed = md.parameters().seed();
+  i.algorithm_version = md.parameters().algorithm_version();
+  i.from_cache = md.from_cache();
+  i.optimize_seconds = md.optimize_seconds();
+  i.iterations = md.iterations();
+  i.engine = md.engine();
+  return i;
+}
+
+ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
+  ServiceMetrics m;
+  m.requests_get = r.requests_get();
+  m.requests_watch = r.requests_watch();
+  m.requests_precompute = r.requests_precompute();
+  m.requests_samples = r.requests_samples();
+  m.requests_invalid = r.requests_invalid();
+  m.cache_hits_memory = r.cache_hits_memory();
+  m.cache_hits_db = r.cache_hits_db();
+  m.cache_misses = r.cache_misses();
+  m.corrupt_rows = r.corrupt_rows();
+  m.optimizations_started = r.optimizations_started();
+  m.optimizations_completed = r.optimizations_completed();
+  m.optimizations_cancelled = r.optimizations_cancelled();
+  m.optimizations_failed = r.optimizations_failed();
+  m.shared_waits = r.shared_waits();
+  m.rejected_queue_full = r.rejected_queue_full();
+  m.queue_length = r.queue_length();
+  m.running = r.running();
+  m.optimize_seconds_total = r.optimize_seconds_total();
+  m.optimize_seconds_max = r.optimize_seconds_max();
+  m.uptime_seconds = r.uptime_seconds();
+  return m;
+}
+
+PrecomputeUpdate ToUpdate(const v1::PrecomputeProgress& p) {
+  PrecomputeUpdate u;
+  u.total = p.total();
+  u.done = p.done();
+  u.cached_already = p.cached_already();
+  u.failed = p.failed();
+  u.remaining = p.remaining();
+  u.elapsed_seconds = p.elapsed_seconds();
+  u.estimated_seconds_left = p.estimated_seconds_left();
+  u.last_key = p.last_key().text();
+  u.last_error = p.last_error();
+  return u;
+}
+
+}  // namespace
+
+StatusOr<PointSet> DecodePoints(const std::string& bytes, uint32_t expected_n) {
+  if (bytes.size() != static_cast<size_t>(expected_n) * 16) {
+    return Status::InvalidArgument("the server sent " + std::to_string(bytes.size()) +
+                                   " bytes of points for n = " + std::to_string(expected_n) +
+                                   " (expected 16 per point)");
+  }
+  PointSet pts(expected_n);
+  if (expected_n > 0) std::memcpy(pts.data(), bytes.data(), bytes.size());
+  for (const Point2& p : pts) {
+    if (!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0)) {
+      return Status::InvalidArgument("the server sent a point outside [0, 1)^2");
+    }
+  }
+  return pts;
+}
+
+struct ServiceClient::Impl {
+  ConnectOptions options;
+  std::shared_ptr<grpc::Channel> channel;
+  std::unique_ptr<v1::AlignSet::Stub> stub;
+  std::unique_ptr<grpc::health::v1::Health::Stub> health;
+
+  void Prepare(grpc::ClientContext* ctx, bool unary) const {
+    if (!options.token.empty()) ctx->AddMetadata("authorization", "Bearer " + options.token);
+    if (unary && options.timeout_seconds > 0) {
+      ctx->set_deadline(std::chrono::system_clock::now() +
+                        std::chrono::microseconds(static_cast<int64_t>(options.timeout_seconds * 1e6)));
+    }
+  }
+  Status Fail(const grpc::Status& s) const { return FromGrpc(s, options.address); }
+};
+
+ServiceClient::ServiceClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ServiceClient::~ServiceClient() = default;
+
+StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOptions& options) {
+  if (options.address.empty()) return Status::InvalidArgument("empty server address");
+  std::shared_ptr<grpc::ChannelCredentials> creds = grpc::InsecureChannelCredentials();
+  if (!options.tls_ca_file.empty()) {
+    std::ifstream in(options.tls_ca_file, std::ios::binary);
+    if (!in) return Status::InvalidArgument("cannot read --tls-ca " + options.tls_ca_file);
+    std::ostringstream pem;
+    pem << in.rdbuf();
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = pem.str();
+    creds = grpc::SslCredentials(ssl);
+  }
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(-1);
+  if (!options.tls_server_name.empty()) args.SetSslTargetNameOverride(options.tls_server_name);
+  if (options.separate_connection) args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
+  auto impl = std::make_unique<Impl>();
+  impl->options = options;
+  impl->channel = grpc::CreateCustomChannel(options.address, creds, args);
+  impl->stub = v1::AlignSet::NewStub(impl->channel);
+  impl->health = grpc::health::v1::Health::NewStub(impl->channel);
+  return std::unique_ptr<ServiceClient>(new ServiceClient(std::move(impl)));
+}
+
+namespace {
+v1::AlignedSetRequest MakeRequest(uint32_t n, const std::vector<double>& dirs) {
+  v1::AlignedSetRequest req;
+  req.set_n(n);
+  for (double d : dirs) req.add_directions_deg(d);
+  return req;
+}
+
+StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
+  AlignedSet out;
+  auto pts = DecodePoints(resp->points(), resp->n());
+  if (!pts.ok()) return pts.status();
+  out.points = std::move(pts).value();
+  out.info = ToInfo(resp->metadata(), resp->n());
+  out.raw = std::move(*resp->mutable_points());
+  return out;
+}
+}  // namespace
+
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs) {
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  v1::AlignedSetResponse resp;
+  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs), &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  return FromResponse(&resp);
+}
+
+StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
+    uint32_t n, const std::vector<double>& dirs,
+    const std::function<void(const WatchUpdate&)>& on_update) {
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, false);
+  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs));
+  v1::WatchEvent ev;
+  std::optional<StatusOr<AlignedSet>> result;
+  while (reader->Read(&ev)) {
+    if (ev.has_set()) {
+      result = FromResponse(ev.mutable_set());
+      continue;
+    }
+    WatchUpdate u;
+    if (ev.has_queued()) {
+      u.queued = true;
+      u.queue_position = ev.queued().position();
+    } else if (ev.has_progress()) {
+      u.iteration = ev.progress().iteration();
+      u.max_iterations = ev.progress().max_iterations();
+      u.loss = ev.progress().loss();
+      u.learning_rate = ev.progress().learning_rate();
+      u.elapsed_seconds = ev.progress().elapsed_seconds();
+    } else {
+      continue;
+    }
+    if (on_update) on_update(u);
+  }
+  grpc::Status s = reader->Finish();
+  if (!s.ok()) return impl_->Fail(s);
+  if (!result) return Status::Internal("the server ended the stream without a set");
+  return std::move(*result);
+}
+
+StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
+    const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update) {
+  v1::PrecomputeRequest req;
+  for (uint32_t n : spec.n) req.add_n(n);
+  switch (spec.space) {
+    case 1: req.set_space(v1::ONE_DIRECTION); break;
+    case 2: req.set_space(v1::TWO_DIRECTIONS); break;
+    case 0:
+      req.set_space(v1::EXPLICIT);
+      for (const auto& k : spec.keys) {
+        auto* e = req.add_keys();
+        for (int d : k) e->add_directions_deg(d);
+      }
+      break;
+    default: return Status::InvalidArgument("space must be 1, 2 or 0 (explicit keys)");
+  }
+  req.set_shard_index(spec.shard_index);
+  req.set_shard_count(spec.shard_count);
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, false);
+  auto reader = impl_->stub->Precompute(&ctx, req);
+  v1::PrecomputeProgress p;
+  PrecomputeUpdate last;
+  while (reader->Read(&p)) {
+    last = ToUpdate(p);
+    if (on_update) on_update(last);
+  }
+  grpc::Status s = reader->Finish();
+  if (!s.ok()) return impl_->Fail(s);
+  return last;
+}
+
+StatusOr<PointSet> ServiceClient::GetSamples(const std::string& sampler, uint32_t n, uint64_t seed,
+                                             std::optional<double> shear_deg) {
+  v1::SamplesRequest req;
+  req.set_sampler(sampler);
+  req.set_n(n);
+  req.set_seed(seed);
+  if (shear_deg) req.set_shear_deg(*shear_deg);
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  v1::SamplesResponse resp;
+  grpc::Status s = impl_->stub->GetSamples(&ctx, req, &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  return DecodePoints(resp.points(), resp.n());
+}
+
+StatusOr<CacheInfo> ServiceClient::GetCacheStats() {
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  v1::CacheStatsResponse resp;
+  grpc::Status s = impl_->stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  CacheInfo c;
+  c.sets = resp.sets();
+  c.bytes = resp.bytes();
+  c.one_direction_sets = resp.one_direction_sets();
+  c.two_direction_sets = resp.two_direction_sets();
+  c.database_path = resp.database_path();
+  c.profile_hint = resp.profile_hint();
+  c.metrics = ToMetrics(resp.metrics());
+  return c;
+}
+
+StatusOr<ServiceMetrics> ServiceClient::GetMetrics() {
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  v1::MetricsResponse resp;
+  grpc::Status s = impl_->stub->GetMetrics(&ctx, v1::MetricsRequest(), &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  return ToMetrics(resp);
+}
+
+StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const std::string& profile,
+                                                               uint32_t limit) {
+  v1::ListCachedSetsRequest req;
+  req.set_n(n);
+  req.set_profile(profile);
+  req.set_limit(limit);
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  v1::ListCachedSetsResponse resp;
+  grpc::Status s = impl_->stub->ListCachedSets(&ctx, req, &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  std::vector<CachedKey> out;
+  for (const auto& k : resp.keys()) {
+    out.push_back({k.n(), static_cast<int>(k.direction_count()), k.phi1_deg(), k.phi2_deg(),
+                   k.profile(), k.text()});
+  }
+  return out;
+}
+
+StatusOr<bool> ServiceClient::Healthy() {
+  grpc::ClientContext ctx;
+  impl_->Prepare(&ctx, true);
+  grpc::health::v1::HealthCheckRequest req;
+  grpc::health::v1::HealthCheckResponse resp;
+  grpc::Status s = impl_->health->Check(&ctx, req, &resp);
+  if (!s.ok()) return impl_->Fail(s);
+  return resp.status() == grpc::health::v1::HealthCheckResponse::SERVING;
+}
+
+}  // namespace alignset::cli

@@ -1,0 +1,162 @@
+#include "server/config.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <vector>
+
+#include "core/optimizer.h"
+
+namespace alignset::server {
+namespace {
+
+struct Flag {
+  const char* name;
+  const char* help;
+  std::function<Status(ServerConfig&, const std::string&)> apply;
+};
+
+StatusOr<int64_t> ToInt(const std::string& v, const std::string& what, int64_t lo, int64_t hi) {
+  char* end = nullptr;
+  errno = 0;
+  const long long x = std::strtoll(v.c_str(), &end, 10);
+  if (v.empty() || *end != '\0' || errno == ERANGE) {
+    return Status::InvalidArgument(what + ": '" + v + "' is not an integer");
+  }
+  if (x < lo || x > hi) {
+    return Status::InvalidArgument(what + ": " + v + " is out of range [" + std::to_string(lo) +
+                                   ", " + std::to_string(hi) + "]");
+  }
+  return static_cast<int64_t>(x);
+}
+
+template <typename T>
+std::function<Status(ServerConfig&, const std::string&)> IntFlag(T ServerConfig::*field,
+                                                                 const char* name, int64_t lo,
+                                                                 int64_t hi) {
+  return [=](ServerConfig& c, const std::string& v) {
+    auto x = ToInt(v, std::string("--") + name, lo, hi);
+    if (!x.ok()) return x.status();
+    c.*field = static_cast<T>(*x);
+    return Status::Ok();
+  };
+}
+
+std::function<Status(ServerConfig&, const std::string&)> StringFlag(std::string ServerConfig::*field) {
+  return [=](ServerConfig& c, const std::string& v) {
+    c.*field = v;
+    return Status::Ok();
+  };
+}
+
+const std::vector<Flag>& Flags() {
+  static const std::vector<Flag> flags = {
+      {"listen", "ADDR      address to listen on (default 127.0.0.1:50051; port 0 picks one)",
+       StringFlag(&ServerConfig::listen)},
+      {"db", "PATH          SQLite cache (default $ALIGNSET_DATA_DIR or ~/.local/share/alignset)",
+       StringFlag(&ServerConfig::db_path)},
+      {"workers", "K       concurrent optimizations (default 1)",
+       IntFlag(&ServerConfig::workers, "workers", 1, 256)},
+      {"threads-per-worker", "T  CPU threads per optimization (default 0: all cores)",
+       IntFlag(&ServerConfig::threads_per_worker, "threads-per-worker", 0, 1024)},
+      {"max-n", "N         largest point count served (default 65536)",
+       IntFlag(&ServerConfig::max_n, "max-n", kMinPoints, kMaxPoints)},
+      {"max-iterations", "K  optimizer iterations per set (default 3000)",
+       IntFlag(&ServerConfig::max_iterations, "max-iterations", 1, 100000000)},
+      {"engine", "E        spectral engine auto|direct|fast|cuda (default auto)",
+       [](ServerConfig& c, const std::string& v) {
+         auto k = ParseEngineKind(v);
+         if (!k.ok()) return k.status();
+         c.engine = *k;
+         return Status::Ok();
+       }},
+      {"seed", "S          seed of the Owen-scrambled Sobol start (default 1)",
+       IntFlag(&ServerConfig::seed, "seed", 0, INT64_MAX)},
+      {"max-queue", "Q     optimizations allowed to wait (default 256)",
+       IntFlag(&ServerConfig::max_queue, "max-queue", 1, 1000000)},
+      {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
+       IntFlag(&ServerConfig::memory_cache_mb, "memory-cache-mb", 0, 1 << 20)},
+      {"max-request-bytes", "B  largest request message (default 1048576)",
+       IntFlag(&ServerConfig::max_request_bytes, "max-request-bytes", 1024, INT32_MAX)},
+      {"tls-cert", "PEM    serve TLS with this certificate chain (needs --tls-key)",
+       StringFlag(&ServerConfig::tls_cert)},
+      {"tls-key", "PEM     private key of --tls-cert", StringFlag(&ServerConfig::tls_key)},
+      {"token-file", "F   require 'authorization: Bearer <token>' with the token in F",
+       StringFlag(&ServerConfig::token_file)},
+      {"port-file", "F    write the bound port to F once listening",
+       StringFlag(&ServerConfig::port_file)},
+      {"log-level", "L    trace|debug|info|warn|error|off (default info)",
+       StringFlag(&ServerConfig::log_level)},
+      {"shutdown-grace", "S  seconds running calls get after SIGTERM (default 5)",
+       [](ServerConfig& c, const std::string& v) {
+         char* end = nullptr;
+         const double s = std::strtod(v.c_str(), &end);
+         if (v.empty() || *end != '\0' || !std::isfinite(s) || s < 0 || s > 3600) {
+           return Status::InvalidArgument("--shutdown-grace: '" + v + "' is not a number of seconds in [0, 3600]");
+         }
+         c.shutdown_grace_seconds = s;
+         return Status::Ok();
+       }},
+  };
+  return flags;
+}
+
+std::string EnvName(const std::string& flag) {
+  std::string e = "ALIGNSET_";
+  for (char ch : flag) e.push_back(ch == '-' ? '_' : static_cast<char>(std::toupper(ch)));
+  return e;
+}
+
+}  // namespace
+
+std::string ServerUsage() {
+  std::string u = "usage: alignset-server [options]\n\noptions (each also from the environment variable shown):\n";
+  for (const Flag& f : Flags()) {
+    u += "  --" + std::string(f.name) + " " + f.help + "  [" + EnvName(f.name) + "]\n";
+  }
+  return u;
+}
+
+StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup& env) {
+  ServerConfig config;
+  const auto& flags = Flags();
+  for (const Flag& f : flags) {
+    if (!env) break;
+    const std::string name = EnvName(f.name);
+    if (const char* v = env(name.c_str()); v != nullptr && *v != '\0') {
+      if (Status s = f.apply(config, v); !s.ok()) {
+        return Status::InvalidArgument(name + ": " + s.message());
+      }
+    }
+  }
+  for (int i = 0; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--help" || a == "-h") return Status::NotFound(ServerUsage());
+    if (a.rfind("--", 0) != 0) return Status::InvalidArgument("unexpected argument '" + a + "'");
+    std::string name = a.substr(2), value;
+    bool has_value = false;
+    if (auto eq = name.find('='); eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_value = true;
+    }
+    const Flag* flag = nullptr;
+    for (const Flag& f : flags) {
+      if (name == f.name) flag = &f;
+    }
+    if (flag == nullptr) return Status::InvalidArgument("unknown option --" + name + " (try --help)");
+    if (!has_value) {
+      if (i + 1 >= argc) return Status::InvalidArgument("--" + name + " needs a value");
+      value = argv[++i];
+    }
+    if (Status s = flag->apply(config, value); !s.ok()) return s;
+  }
+  if (config.tls_cert.empty() != config.tls_key.empty()) {
+    return Status::InvalidArgument("--tls-cert and --tls-key go together");
+  }
+  if (config.listen.empty()) return Status::InvalidArgument("--listen is empty");
+  return config;
+}
+
+}  // namespace alignset::server

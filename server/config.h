@@ -1,0 +1,52 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/spectral_engine.h"
+#include "core/status.h"
+
+namespace alignset::server {
+
+inline constexpr const char* kDefaultListenAddress = "127.0.0.1:50051";
+
+// Everything alignset-server can be told. Each flag --name has an environment
+// variable ALIGNSET_NAME (upper case, '-' -> '_'); a flag wins over its
+// variable, a variable over the default.
+struct ServerConfig {
+  std::string listen = kDefaultListenAddress;
+  std::string db_path;  // empty: storage::DefaultDatabasePath()
+  int workers = 1;
+  int threads_per_worker = 0;  // <= 0: all cores
+  uint32_t max_n = 65536;
+  int max_iterations = 3000;
+  EngineKind engine = EngineKind::kAuto;
+  uint64_t seed = 1;
+  // Optimizations waiting for a worker; a request needing one more gets
+  // RESOURCE_EXHAUSTED.
+  int max_queue = 256;
+  // Decoded canonical sets (and their encoded alignments) kept in memory.
+  int64_t memory_cache_mb = 512;
+  // Largest request message accepted (larger: RESOURCE_EXHAUSTED from gRPC).
+  int64_t max_request_bytes = 1 << 20;
+  std::string tls_cert;  // PEM; both or neither of cert and key
+  std::string tls_key;
+  std::string token_file;  // one bearer token; empty: no authentication
+  // Written with the bound port once listening (for --listen host:0).
+  std::string port_file;
+  std::string log_level = "info";
+  // Seconds that running work may take to finish after SIGTERM/SIGINT before
+  // in-flight calls are cancelled.
+  double shutdown_grace_seconds = 5.0;
+};
+
+// Looks up an environment variable; nullptr when unset.
+using EnvLookup = std::function<const char*(const char*)>;
+
+// Parses argv (after the program name) over the environment. --help yields
+// NotFound with the usage text as its message.
+StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup& env);
+std::string ServerUsage();
+
+}  // namespace alignset::server

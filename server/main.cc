@@ -1,0 +1,50 @@
+// alignset-server: serves aligned point sets over gRPC (see server/server.h).
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "server/config.h"
+#include "server/server.h"
+
+int main(int argc, char** argv) {
+  auto config = alignset::server::ParseServerConfig(argc - 1, argv + 1, [](const char* name) {
+    return static_cast<const char*>(std::getenv(name));
+  });
+  if (!config.ok()) {
+    if (config.status().code() == alignset::Status::Code::kNotFound) {  // --help
+      std::fputs(config.status().message().c_str(), stdout);
+      return 0;
+    }
+    std::fprintf(stderr, "alignset-server: %s\n", config.status().message().c_str());
+    return 2;
+  }
+  auto level = spdlog::level::from_str(config->log_level);
+  if (level == spdlog::level::off && config->log_level != "off") {
+    std::fprintf(stderr, "alignset-server: unknown --log-level '%s'\n", config->log_level.c_str());
+    return 2;
+  }
+  spdlog::set_level(level);
+  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ %v");
+
+  // Block the stop signals in every thread (they inherit the mask) and take
+  // them synchronously here, so shutdown runs in ordinary code.
+  sigset_t stop;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGTERM);
+  sigaddset(&stop, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &stop, nullptr);
+  signal(SIGPIPE, SIG_IGN);
+
+  auto server = alignset::server::ServerInstance::Start(*config);
+  if (!server.ok()) {
+    std::fprintf(stderr, "alignset-server: %s\n", server.status().message().c_str());
+    return 1;
+  }
+  int sig = 0;
+  sigwait(&stop, &sig);
+  spdlog::info("received {}", sig == SIGTERM ? "SIGTERM" : "SIGINT");
+  (*server)->Shutdown(config->shutdown_grace_seconds);
+  return 0;
+}

@@ -1,0 +1,96 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+
+namespace alignset::server {
+
+struct MetricsSnapshot {
+  uint64_t requests_get = 0;
+  uint64_t requests_watch = 0;
+  uint64_t requests_precompute = 0;
+  uint64_t requests_samples = 0;
+  uint64_t requests_invalid = 0;
+  uint64_t cache_hits_memory = 0;
+  uint64_t cache_hits_db = 0;
+  uint64_t cache_misses = 0;
+  uint64_t corrupt_rows = 0;
+  uint64_t optimizations_started = 0;
+  uint64_t optimizations_completed = 0;
+  uint64_t optimizations_cancelled = 0;
+  uint64_t optimizations_failed = 0;
+  uint64_t shared_waits = 0;
+  uint64_t rejected_queue_full = 0;
+  uint32_t queue_length = 0;
+  uint32_t running = 0;
+  double optimize_seconds_total = 0.0;
+  double optimize_seconds_max = 0.0;
+  double uptime_seconds = 0.0;
+};
+
+// Counters shared by the service and the scheduler. Lock-free on the hot
+// path (cache hits); the optimization times take a mutex, once per set.
+class Metrics {
+ public:
+  std::atomic<uint64_t> requests_get{0};
+  std::atomic<uint64_t> requests_watch{0};
+  std::atomic<uint64_t> requests_precompute{0};
+  std::atomic<uint64_t> requests_samples{0};
+  std::atomic<uint64_t> requests_invalid{0};
+  std::atomic<uint64_t> cache_hits_memory{0};
+  std::atomic<uint64_t> cache_hits_db{0};
+  std::atomic<uint64_t> cache_misses{0};
+  std::atomic<uint64_t> corrupt_rows{0};
+  std::atomic<uint64_t> optimizations_started{0};
+  std::atomic<uint64_t> optimizations_completed{0};
+  std::atomic<uint64_t> optimizations_cancelled{0};
+  std::atomic<uint64_t> optimizations_failed{0};
+  std::atomic<uint64_t> shared_waits{0};
+  std::atomic<uint64_t> rejected_queue_full{0};
+
+  void RecordOptimization(double seconds) {
+    std::lock_guard<std::mutex> lock(mu_);
+    optimize_seconds_total_ += seconds;
+    if (seconds > optimize_seconds_max_) optimize_seconds_max_ = seconds;
+  }
+
+  // Queue figures come from the scheduler at snapshot time.
+  MetricsSnapshot Snapshot(uint32_t queue_length, uint32_t running) const {
+    MetricsSnapshot s;
+    s.requests_get = requests_get.load();
+    s.requests_watch = requests_watch.load();
+    s.requests_precompute = requests_precompute.load();
+    s.requests_samples = requests_samples.load();
+    s.requests_invalid = requests_invalid.load();
+    s.cache_hits_memory = cache_hits_memory.load();
+    s.cache_hits_db = cache_hits_db.load();
+    s.cache_misses = cache_misses.load();
+    s.corrupt_rows = corrupt_rows.load();
+    s.optimizations_started = optimizations_started.load();
+    s.optimizations_completed = optimizations_completed.load();
+    s.optimizations_cancelled = optimizations_cancelled.load();
+    s.optimizations_failed = optimizations_failed.load();
+    s.shared_waits = shared_waits.load();
+    s.rejected_queue_full = rejected_queue_full.load();
+    s.queue_length = queue_length;
+    s.running = running;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      s.optimize_seconds_total = optimize_seconds_total_;
+      s.optimize_seconds_max = optimize_seconds_max_;
+    }
+    s.uptime_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    return s;
+  }
+
+ private:
+  mutable std::mutex mu_;
+  double optimize_seconds_total_ = 0.0;
+  double optimize_seconds_max_ = 0.0;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace alignset::server

@@ -1,0 +1,163 @@
+#include "server/server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "server/scheduler.h"
+#include "server/service.h"
+#include "storage/paths.h"
+
+namespace alignset::server {
+namespace {
+
+StatusOr<std::string> ReadFile(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::InvalidArgument(std::string("cannot read ") + what + " " + path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The token is the file's first line without surrounding white space.
+StatusOr<std::string> ReadToken(const std::string& path) {
+  auto text = ReadFile(path, "--token-file");
+  if (!text.ok()) return text.status();
+  std::string t = text->substr(0, text->find('\n'));
+  const auto b = t.find_first_not_of(" \t\r");
+  const auto e = t.find_last_not_of(" \t\r");
+  t = b == std::string::npos ? "" : t.substr(b, e - b + 1);
+  if (t.empty()) return Status::InvalidArgument("--token-file " + path + " holds no token");
+  return t;
+}
+
+Status WritePortFile(const std::string& path, int port) {
+  const std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "w");
+  if (!f) return Status::InvalidArgument("cannot write --port-file " + path);
+  std::fprintf(f, "%d\n", port);
+  const bool ok = std::fclose(f) == 0;
+  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    return Status::InvalidArgument("cannot write --port-file " + path);
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+struct ServerInstance::Impl {
+  ServerConfig config;
+  std::string db_path;
+  Metrics metrics;
+  std::unique_ptr<storage::SetCache> cache;
+  std::unique_ptr<Scheduler> scheduler;
+  std::unique_ptr<AlignSetService> service;
+  std::unique_ptr<grpc::Server> server;
+  int port = 0;
+  bool stopped = false;
+};
+
+ServerInstance::ServerInstance(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+ServerInstance::~ServerInstance() { Shutdown(0.0); }
+
+int ServerInstance::port() const { return impl_->port; }
+const std::string& ServerInstance::db_path() const { return impl_->db_path; }
+
+StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConfig& config) {
+  auto impl = std::make_unique<Impl>();
+  impl->config = config;
+  if (config.db_path.empty()) {
+    auto p = storage::DefaultDatabasePath();
+    if (!p.ok()) return p.status();
+    impl->db_path = *p;
+  } else {
+    impl->db_path = config.db_path;
+  }
+  std::string token;
+  if (!config.token_file.empty()) {
+    auto t = ReadToken(config.token_file);
+    if (!t.ok()) return t.status();
+    token = *t;
+  }
+  std::shared_ptr<grpc::ServerCredentials> creds = grpc::InsecureServerCredentials();
+  if (!config.tls_cert.empty()) {
+    auto cert = ReadFile(config.tls_cert, "--tls-cert");
+    if (!cert.ok()) return cert.status();
+    auto key = ReadFile(config.tls_key, "--tls-key");
+    if (!key.ok()) return key.status();
+    grpc::SslServerCredentialsOptions ssl;
+    ssl.pem_key_cert_pairs.push_back({*key, *cert});
+    creds = grpc::SslServerCredentials(ssl);
+  }
+
+  auto cache = storage::SetCache::Open(impl->db_path);
+  if (!cache.ok()) return Status::Unavailable("cannot open the cache " + impl->db_path + ": " + cache.status().message());
+  impl->cache = std::move(cache).value();
+
+  Scheduler::Options so;
+  so.workers = config.workers;
+  so.threads_per_worker = config.threads_per_worker;
+  so.engine = config.engine;
+  so.max_queue = config.max_queue;
+  so.optimizer.max_iterations = config.max_iterations;
+  so.seed = config.seed;
+  so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
+  auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
+  if (!scheduler.ok()) return scheduler.status();
+  impl->scheduler = std::move(scheduler).value();
+  impl->service = std::make_unique<AlignSetService>(config, impl->db_path, token, impl->cache.get(),
+                                                    impl->scheduler.get(), &impl->metrics);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(config.listen, creds, &impl->port);
+  builder.RegisterService(impl->service.get());
+  builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_request_bytes));
+  builder.SetMaxSendMessageSize(-1);
+  impl->server = builder.BuildAndStart();
+  if (!impl->server || impl->port == 0) {
+    impl->scheduler->Shutdown();
+    return Status::Unavailable("cannot listen on " + config.listen);
+  }
+  impl->server->GetHealthCheckService()->SetServingStatus(true);
+  if (!config.port_file.empty()) {
+    if (Status s = WritePortFile(config.port_file, impl->port); !s.ok()) {
+      impl->server->Shutdown();
+      impl->scheduler->Shutdown();
+      return s;
+    }
+  }
+  spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
+               "max iterations {}{}{}",
+               config.listen, impl->port, impl->db_path, config.workers, config.threads_per_worker,
+               EngineKindName(config.engine), config.max_n, config.max_iterations,
+               config.tls_cert.empty() ? "" : ", TLS", token.empty() ? "" : ", bearer token");
+  return std::unique_ptr<ServerInstance>(new ServerInstance(std::move(impl)));
+}
+
+void ServerInstance::Shutdown(double grace_seconds) {
+  if (!impl_ || impl_->stopped) return;
+  impl_->stopped = true;
+  spdlog::info("shutting down (grace {:.1f} s)", grace_seconds);
+  impl_->server->GetHealthCheckService()->SetServingStatus(false);
+  // Waiting handlers see their jobs end and return; then the RPC layer drains.
+  impl_->scheduler->BeginShutdown();
+  const auto deadline = std::chrono::system_clock::now() +
+                        std::chrono::milliseconds(static_cast<int64_t>(grace_seconds * 1000));
+  impl_->server->Shutdown(deadline);
+  impl_->server->Wait();
+  impl_->scheduler->Shutdown();  // joins workers: a write in progress completes
+  impl_->service.reset();
+  impl_->scheduler.reset();
+  impl_->cache.reset();  // closes SQLite cleanly (WAL checkpoint)
+  spdlog::info("stopped");
+}
+
+}  // namespace alignset::server

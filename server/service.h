@@ -1,0 +1,58 @@
+#pragma once
+
+#include <string>
+
+#include "alignset/v1/alignset.grpc.pb.h"
+#include "server/config.h"
+#include "server/metrics.h"
+#include "server/scheduler.h"
+#include "storage/set_cache.h"
+
+namespace alignset::server {
+
+// The alignset.v1.AlignSet service on gRPC's synchronous API. Handlers that
+// wait for an optimization poll their context every 50 ms, so a client that
+// cancels or reaches its deadline stops waiting promptly (its ticket is
+// released; see Scheduler for what happens to the optimization).
+class AlignSetService final : public v1::AlignSet::Service {
+ public:
+  // `token` empty: no authentication. Otherwise every call must carry
+  // metadata "authorization: Bearer <token>" or gets UNAUTHENTICATED.
+  AlignSetService(const ServerConfig& config, std::string db_path, std::string token,
+                  storage::SetCache* cache, Scheduler* scheduler, Metrics* metrics);
+
+  grpc::Status GetAlignedSet(grpc::ServerContext* ctx, const v1::AlignedSetRequest* req,
+                             v1::AlignedSetResponse* resp) override;
+  grpc::Status WatchAlignedSet(grpc::ServerContext* ctx, const v1::AlignedSetRequest* req,
+                               grpc::ServerWriter<v1::WatchEvent>* writer) override;
+  grpc::Status Precompute(grpc::ServerContext* ctx, const v1::PrecomputeRequest* req,
+                          grpc::ServerWriter<v1::PrecomputeProgress>* writer) override;
+  grpc::Status GetSamples(grpc::ServerContext* ctx, const v1::SamplesRequest* req,
+                          v1::SamplesResponse* resp) override;
+  grpc::Status GetCacheStats(grpc::ServerContext* ctx, const v1::CacheStatsRequest* req,
+                             v1::CacheStatsResponse* resp) override;
+  grpc::Status ListCachedSets(grpc::ServerContext* ctx, const v1::ListCachedSetsRequest* req,
+                              v1::ListCachedSetsResponse* resp) override;
+  grpc::Status GetMetrics(grpc::ServerContext* ctx, const v1::MetricsRequest* req,
+                          v1::MetricsResponse* resp) override;
+
+ private:
+  grpc::Status Authorize(grpc::ServerContext* ctx) const;
+  grpc::Status Invalid(const Status& s, const char* rpc) const;
+  void FillMetrics(v1::MetricsResponse* out) const;
+  void FillKey(const storage::SetKey& key, v1::CanonicalKey* out) const;
+  void FillSet(const Canonicalization& canon, const storage::SetKey& key,
+               const CanonicalEntry& entry, bool from_cache, v1::AlignedSetResponse* out) const;
+
+  const ServerConfig config_;
+  const std::string db_path_;
+  const std::string token_;
+  storage::SetCache* cache_;
+  Scheduler* scheduler_;
+  Metrics* metrics_;
+};
+
+// alignset Status -> gRPC status, code for code.
+grpc::Status ToGrpc(const Status& s);
+
+}  // namespace alignset::server

@@ -1,0 +1,45 @@
+#include "server/validation.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/optimizer.h"
+
+namespace alignset::server {
+
+Status ValidatePointCount(uint32_t n, uint32_t max_n) {
+  if (n == 0) return Status::InvalidArgument("n is 0 (missing?): ask for at least " + std::to_string(kMinPoints) + " points");
+  if (n < kMinPoints) {
+    return Status::InvalidArgument("n = " + std::to_string(n) + " is below the minimum of " +
+                                   std::to_string(kMinPoints) + " points");
+  }
+  if (n > max_n) {
+    return Status::InvalidArgument("n = " + std::to_string(n) + " is above this server's maximum of " +
+                                   std::to_string(max_n) + " points (--max-n)");
+  }
+  return Status::Ok();
+}
+
+StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
+                                                     const std::vector<double>& directions_deg,
+                                                     uint32_t max_n) {
+  if (Status s = ValidatePointCount(n, max_n); !s.ok()) return s;
+  if (directions_deg.empty() || directions_deg.size() > 2) {
+    return Status::InvalidArgument(
+        "give one or two directions (degrees; 0 and 90 are always included), got " +
+        std::to_string(directions_deg.size()));
+  }
+  for (size_t i = 0; i < directions_deg.size(); ++i) {
+    if (!std::isfinite(directions_deg[i])) {
+      return Status::InvalidArgument("direction " + std::to_string(i) + " is not a finite number");
+    }
+    // Beyond this, doubles no longer resolve whole degrees.
+    if (std::fabs(directions_deg[i]) > 1e15) {
+      return Status::InvalidArgument("direction " + std::to_string(i) + " = " +
+                                     std::to_string(directions_deg[i]) + " is too large");
+    }
+  }
+  return Canonicalize(directions_deg);
+}
+
+}  // namespace alignset::server

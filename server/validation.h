@@ -1,0 +1,21 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/canonical.h"
+#include "core/status.h"
+
+namespace alignset::server {
+
+// Checks an aligned-set request at the service boundary and maps it onto its
+// canonical key. Every refusal is INVALID_ARGUMENT with a message that names
+// the offending field and value.
+StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
+                                                     const std::vector<double>& directions_deg,
+                                                     uint32_t max_n);
+
+// N alone (precompute lists, samplers).
+Status ValidatePointCount(uint32_t n, uint32_t max_n);
+
+}  // namespace alignset::server

@@ -1,0 +1,102 @@
+#include "storage/blob_codec.h"
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace alignset::storage {
+namespace {
+
+// Slicing-by-8 tables: table[k][b] is the CRC of byte b followed by k zero
+// bytes, so eight input bytes are folded per step instead of one.
+using CrcTables = std::array<std::array<uint32_t, 256>, 8>;
+
+constexpr CrcTables MakeTables() {
+  CrcTables t{};
+  for (uint32_t b = 0; b < 256; ++b) {
+    uint32_t c = b;
+    for (int i = 0; i < 8; ++i) c = (c >> 1) ^ ((c & 1u) ? 0x82F63B78u : 0u);
+    t[0][b] = c;
+  }
+  for (uint32_t b = 0; b < 256; ++b) {
+    for (int k = 1; k < 8; ++k) t[k][b] = (t[k - 1][b] >> 8) ^ t[0][t[k - 1][b] & 0xffu];
+  }
+  return t;
+}
+
+constexpr CrcTables kTables = MakeTables();
+
+void PutLe64(uint64_t v, uint8_t* out) {
+  for (int i = 0; i < 8; ++i) out[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+
+uint64_t GetLe64(const uint8_t* in) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(in[i]) << (8 * i);
+  return v;
+}
+
+bool InUnitInterval(double v) { return std::isfinite(v) && v >= 0.0 && v < 1.0; }
+
+}  // namespace
+
+uint32_t Crc32c(std::span<const uint8_t> data, uint32_t crc) {
+  uint32_t c = ~crc;
+  const uint8_t* p = data.data();
+  size_t n = data.size();
+  while (n >= 8) {
+    const uint32_t lo = c ^ (static_cast<uint32_t>(p[0]) | static_cast<uint32_t>(p[1]) << 8 |
+                             static_cast<uint32_t>(p[2]) << 16 | static_cast<uint32_t>(p[3]) << 24);
+    c = kTables[7][lo & 0xff] ^ kTables[6][(lo >> 8) & 0xff] ^ kTables[5][(lo >> 16) & 0xff] ^
+        kTables[4][lo >> 24] ^ kTables[3][p[4]] ^ kTables[2][p[5]] ^ kTables[1][p[6]] ^
+        kTables[0][p[7]];
+    p += 8;
+    n -= 8;
+  }
+  while (n-- > 0) c = (c >> 8) ^ kTables[0][(c ^ *p++) & 0xffu];
+  return ~c;
+}
+
+std::vector<uint8_t> PackPoints(const PointSet& points) {
+  std::vector<uint8_t> out(points.size() * kBytesPerPoint);
+  uint8_t* p = out.data();
+  for (const Point2& q : points) {
+    PutLe64(std::bit_cast<uint64_t>(q.x), p);
+    PutLe64(std::bit_cast<uint64_t>(q.y), p + 8);
+    p += kBytesPerPoint;
+  }
+  return out;
+}
+
+StatusOr<PointSet> UnpackPoints(std::span<const uint8_t> blob, uint32_t expected_n) {
+  if (blob.size() != static_cast<size_t>(expected_n) * kBytesPerPoint) {
+    return Status::DataLoss("point blob holds " + std::to_string(blob.size()) + " bytes, expected " +
+                            std::to_string(static_cast<size_t>(expected_n) * kBytesPerPoint));
+  }
+  PointSet points(expected_n);
+  const uint8_t* p = blob.data();
+  for (uint32_t i = 0; i < expected_n; ++i, p += kBytesPerPoint) {
+    points[i].x = std::bit_cast<double>(GetLe64(p));
+    points[i].y = std::bit_cast<double>(GetLe64(p + 8));
+    if (!InUnitInterval(points[i].x) || !InUnitInterval(points[i].y)) {
+      return Status::DataLoss("point " + std::to_string(i) + " of the blob is outside [0,1)^2");
+    }
+  }
+  return points;
+}
+
+StatusOr<PointSet> VerifyAndUnpack(std::span<const uint8_t> blob, uint32_t stored_crc,
+                                   uint32_t expected_n) {
+  const uint32_t actual = Crc32c(blob);
+  if (actual != stored_crc) {
+    char msg[96];
+    std::snprintf(msg, sizeof(msg), "checksum mismatch: stored crc32c %08x, blob has %08x",
+                  stored_crc, actual);
+    return Status::DataLoss(msg);
+  }
+  return UnpackPoints(blob, expected_n);
+}
+
+}  // namespace alignset::storage

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/point_set.h"
+#include "core/status.h"
+
+namespace alignset::storage {
+
+// CRC-32C (Castagnoli, reflected polynomial 0x82F63B78, as in iSCSI, ext4 and
+// LevelDB). Chosen for the blob checksum because it detects every error
+// burst of up to 32 bits and every odd number of flipped bits, and has
+// published test vectors. `crc` continues an earlier call (start with 0).
+uint32_t Crc32c(std::span<const uint8_t> data, uint32_t crc = 0);
+
+// Bytes per point in a blob: x then y, each an IEEE-754 binary64.
+inline constexpr size_t kBytesPerPoint = 16;
+
+// x0 y0 x1 y1 ... as little-endian float64, whatever the host's byte order.
+std::vector<uint8_t> PackPoints(const PointSet& points);
+
+// The inverse of PackPoints. DataLoss when the size is not 16 * expected_n
+// or a coordinate is not a finite number in [0, 1): a stored set is always
+// inside the unit square, so anything else is damage.
+StatusOr<PointSet> UnpackPoints(std::span<const uint8_t> blob, uint32_t expected_n);
+
+// Checks the blob against its stored checksum, then unpacks it.
+StatusOr<PointSet> VerifyAndUnpack(std::span<const uint8_t> blob, uint32_t stored_crc,
+                                   uint32_t expected_n);
+
+}  // namespace alignset::storage

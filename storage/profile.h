@@ -1,0 +1,18 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/frequency_set.h"
+#include "core/optimizer.h"
+
+namespace alignset::storage {
+
+// The canonical text that ProfileId hashes: "name=value;" for every
+// parameter in a fixed order, numbers in their shortest round-trip form
+// (std::to_chars, so independent of locale), prefixed by a format tag.
+// Exposed so that a profile id can be explained (e.g. in logs).
+std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& options,
+                        uint64_t seed, int algorithm_version);
+
+}  // namespace alignset::storage

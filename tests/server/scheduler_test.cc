@@ -1,0 +1,214 @@
+#include "server/scheduler.h"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <thread>
+
+#include "tests/server/gated_engine.h"
+
+namespace alignset::server {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::Gate;
+using testing::GatedEngine;
+
+class SchedulerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/alignset-scheduler-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+    auto cache = storage::SetCache::Open(dir_ + "/cache.sqlite");
+    ASSERT_TRUE(cache.ok()) << cache.status().message();
+    cache_ = std::move(cache).value();
+  }
+  void TearDown() override {
+    scheduler_.reset();
+    cache_.reset();
+    std::filesystem::remove_all(dir_);
+  }
+  void Start(int workers, int max_queue, int max_iterations) {
+    Scheduler::Options o;
+    o.workers = workers;
+    o.max_queue = max_queue;
+    o.optimizer.max_iterations = max_iterations;
+    o.optimizer.progress_every = 1;
+    o.engine_factory = [g = gate_]() -> StatusOr<std::unique_ptr<SpectralEngine>> {
+      return std::unique_ptr<SpectralEngine>(std::make_unique<GatedEngine>(g));
+    };
+    auto s = Scheduler::Create(o, cache_.get(), &metrics_);
+    ASSERT_TRUE(s.ok()) << s.status().message();
+    scheduler_ = std::move(s).value();
+  }
+  storage::SetKey Key(uint32_t n, int phi) { return scheduler_->KeyFor(n, {1, phi, phi}); }
+  std::unique_ptr<Ticket> MustAcquire(const storage::SetKey& key, Priority p) {
+    auto t = scheduler_->Acquire(key, p);
+    EXPECT_TRUE(t.ok()) << t.status().message();
+    return t.ok() ? std::move(t).value() : nullptr;
+  }
+  static void WaitDone(const Ticket& t) {
+    for (int i = 0; i < 600 && !t.Wait(100ms); ++i) {
+    }
+    ASSERT_TRUE(t.Done());
+  }
+
+  std::string dir_;
+  std::unique_ptr<storage::SetCache> cache_;
+  Metrics metrics_;
+  std::shared_ptr<Gate> gate_ = std::make_shared<Gate>();
+  std::unique_ptr<Scheduler> scheduler_;
+};
+
+TEST_F(SchedulerTest, ConcurrentRequestsForOneKeyShareOneOptimization) {
+  gate_->Close();
+  Start(/*workers=*/2, 64, 20);
+  const storage::SetKey key = Key(64, 17);
+  std::vector<std::unique_ptr<Ticket>> tickets(16);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 16; ++i) {
+    threads.emplace_back([&, i] { tickets[i] = MustAcquire(key, Priority::kInteractive); });
+  }
+  for (auto& t : threads) t.join();
+  gate_->Open();
+  for (auto& t : tickets) {
+    ASSERT_NE(t, nullptr);
+    WaitDone(*t);
+  }
+  auto first = tickets[0]->Result();
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  for (auto& t : tickets) {
+    auto r = t->Result();
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(r->get(), first->get());  // the very same entry
+    EXPECT_FALSE(t->from_cache());
+  }
+  EXPECT_EQ(metrics_.optimizations_started.load(), 1u);
+  EXPECT_EQ(metrics_.optimizations_completed.load(), 1u);
+  EXPECT_EQ(metrics_.shared_waits.load(), 15u);
+  // Stored before anyone saw it, and served from memory afterwards.
+  EXPECT_TRUE(cache_->Contains(key).value());
+  auto again = MustAcquire(key, Priority::kInteractive);
+  EXPECT_TRUE(again->Done());
+  EXPECT_TRUE(again->from_cache());
+  EXPECT_EQ(metrics_.cache_hits_memory.load(), 1u);
+}
+
+TEST_F(SchedulerTest, InteractiveRunsBeforeBatchAndPromotesSharedBatchJobs) {
+  gate_->Close();
+  Start(/*workers=*/1, 64, 20);
+  auto running = MustAcquire(Key(64, 0), Priority::kBatch);
+  gate_->AwaitArrivals(1);  // the worker holds it: everything else queues
+  auto b1 = MustAcquire(Key(64, 1), Priority::kBatch);
+  auto b2 = MustAcquire(Key(64, 2), Priority::kBatch);
+  auto i1 = MustAcquire(Key(64, 3), Priority::kInteractive);
+  EXPECT_EQ(running->View().state, JobView::State::kRunning);
+  EXPECT_EQ(i1->View().queue_position, 0u);
+  EXPECT_EQ(b1->View().queue_position, 1u);
+  EXPECT_EQ(b2->View().queue_position, 2u);
+  // An interactive request joining b2 lifts it among the interactive jobs,
+  // where it keeps its arrival order: ahead of i1, which came later.
+  auto i2 = MustAcquire(Key(64, 2), Priority::kInteractive);
+  EXPECT_EQ(b2->View().queue_position, 0u);
+  EXPECT_EQ(i1->View().queue_position, 1u);
+  EXPECT_EQ(b1->View().queue_position, 2u);
+  EXPECT_EQ(scheduler_->queue_length(), 3u);
+  gate_->Open();
+  for (auto* t : {&running, &b1, &b2, &i1, &i2}) WaitDone(**t);
+  EXPECT_EQ(metrics_.optimizations_completed.load(), 4u);
+}
+
+TEST_F(SchedulerTest, LastWaiterLeavingCancelsTheOptimizationAndStoresNothing) {
+  gate_->Close();
+  Start(/*workers=*/1, 64, 1000000);
+  const storage::SetKey key = Key(64, 5);
+  auto a = MustAcquire(key, Priority::kInteractive);
+  auto b = MustAcquire(key, Priority::kInteractive);
+  gate_->AwaitArrivals(1);
+  EXPECT_EQ(a->View().state, JobView::State::kRunning);
+  a.reset();  // one waiter left: the job goes on
+  gate_->Open();
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(b->View().state, JobView::State::kRunning);
+  EXPECT_EQ(metrics_.optimizations_cancelled.load(), 0u);
+  b.reset();  // none left: stopped at the next progress callback
+  for (int i = 0; i < 100 && scheduler_->running() > 0; ++i) std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(scheduler_->running(), 0u);
+  EXPECT_EQ(metrics_.optimizations_cancelled.load(), 1u);
+  EXPECT_EQ(metrics_.optimizations_completed.load(), 0u);
+  EXPECT_FALSE(cache_->Contains(key).value());
+}
+
+TEST_F(SchedulerTest, QueuedJobWithoutWaitersLeavesTheQueue) {
+  gate_->Close();
+  Start(/*workers=*/1, 64, 20);
+  auto running = MustAcquire(Key(64, 0), Priority::kInteractive);
+  gate_->AwaitArrivals(1);
+  auto queued = MustAcquire(Key(64, 9), Priority::kInteractive);
+  EXPECT_EQ(scheduler_->queue_length(), 1u);
+  queued.reset();
+  EXPECT_EQ(scheduler_->queue_length(), 0u);
+  EXPECT_EQ(metrics_.optimizations_cancelled.load(), 1u);
+  gate_->Open();
+  WaitDone(*running);
+  EXPECT_EQ(metrics_.optimizations_started.load(), 1u);
+}
+
+TEST_F(SchedulerTest, FullQueueRefusesNewKeysButAdmitsJoiners) {
+  gate_->Close();
+  Start(/*workers=*/1, /*max_queue=*/2, 20);
+  auto running = MustAcquire(Key(64, 0), Priority::kInteractive);
+  gate_->AwaitArrivals(1);
+  auto q1 = MustAcquire(Key(64, 1), Priority::kInteractive);
+  auto q2 = MustAcquire(Key(64, 2), Priority::kBatch);
+  auto refused = scheduler_->Acquire(Key(64, 3), Priority::kInteractive);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), Status::Code::kResourceExhausted);
+  EXPECT_EQ(metrics_.rejected_queue_full.load(), 1u);
+  auto joiner = scheduler_->Acquire(Key(64, 2), Priority::kInteractive);
+  EXPECT_TRUE(joiner.ok());
+  gate_->Open();
+  WaitDone(**joiner);
+  EXPECT_TRUE((*joiner)->Result().ok());
+}
+
+TEST_F(SchedulerTest, ShutdownEndsQueuedJobsAsUnavailable) {
+  gate_->Close();
+  Start(/*workers=*/1, 64, 1000000);
+  auto running = MustAcquire(Key(64, 0), Priority::kInteractive);
+  gate_->AwaitArrivals(1);
+  auto queued = MustAcquire(Key(64, 1), Priority::kInteractive);
+  scheduler_->BeginShutdown();
+  ASSERT_TRUE(queued->Done());
+  EXPECT_EQ(queued->Result().status().code(), Status::Code::kUnavailable);
+  gate_->Open();
+  scheduler_->Shutdown();
+  EXPECT_TRUE(running->Done());
+  EXPECT_FALSE(running->Result().ok());
+  auto after = scheduler_->Acquire(Key(64, 2), Priority::kInteractive);
+  EXPECT_EQ(after.status().code(), Status::Code::kUnavailable);
+}
+
+TEST_F(SchedulerTest, StoredSetIsAHitAfterRestart) {
+  Start(/*workers=*/1, 64, 20);
+  const storage::SetKey key = Key(64, 44);
+  auto first = MustAcquire(key, Priority::kInteractive);
+  WaitDone(*first);
+  auto a = first->Result();
+  ASSERT_TRUE(a.ok());
+  const PointSet points = (*a)->record().points;
+  scheduler_.reset();
+  Start(/*workers=*/1, 64, 20);  // a fresh in-memory cache
+  auto second = MustAcquire(key, Priority::kInteractive);
+  ASSERT_TRUE(second->Done());
+  EXPECT_TRUE(second->from_cache());
+  EXPECT_EQ((*second->Result())->record().points, points);
+  EXPECT_EQ(metrics_.cache_hits_db.load(), 1u);
+  EXPECT_EQ(metrics_.optimizations_started.load(), 1u);
+}
+
+}  // namespace
+}  // namespace alignset::server

@@ -1,0 +1,119 @@
+#include "server/validation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "server/canonical_entry.h"
+#include "server/config.h"
+#include "server/set_lru.h"
+
+namespace alignset::server {
+namespace {
+
+void ExpectInvalid(uint32_t n, std::vector<double> dirs, const std::string& fragment) {
+  auto r = ValidateAlignedSetRequest(n, dirs, 4096);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), Status::Code::kInvalidArgument);
+  EXPECT_NE(r.status().message().find(fragment), std::string::npos) << r.status().message();
+}
+
+TEST(Validation, RefusesEachBadFieldWithAMessageNamingIt) {
+  ExpectInvalid(0, {30}, "n is 0");
+  ExpectInvalid(15, {30}, "below the minimum");
+  ExpectInvalid(4097, {30}, "maximum of 4096");
+  ExpectInvalid(64, {}, "one or two directions");
+  ExpectInvalid(64, {1, 2, 3}, "got 3");
+  ExpectInvalid(64, {std::nan("")}, "not a finite");
+  ExpectInvalid(64, {10, std::numeric_limits<double>::infinity()}, "direction 1");
+  ExpectInvalid(64, {1e300}, "too large");
+}
+
+TEST(Validation, AcceptsAndCanonicalizes) {
+  auto r = ValidateAlignedSetRequest(4096, {120.2}, 4096);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->key.count, 1);
+  EXPECT_EQ(r->key.phi1, 30);
+  EXPECT_TRUE(r->ops.swap);
+  EXPECT_TRUE(r->ops.invert);
+  ASSERT_EQ(r->served_deg.size(), 1u);
+  EXPECT_EQ(r->served_deg[0], 120);
+}
+
+TEST(Config, FlagsOverrideEnvironmentOverridesDefaults) {
+  std::map<std::string, std::string> env = {{"ALIGNSET_WORKERS", "3"}, {"ALIGNSET_MAX_N", "1024"}};
+  auto lookup = [&](const char* name) -> const char* {
+    auto it = env.find(name);
+    return it == env.end() ? nullptr : it->second.c_str();
+  };
+  std::vector<std::string> argv_s = {"--workers", "5", "--listen=0.0.0.0:1", "--engine", "direct"};
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  auto c = ParseServerConfig(static_cast<int>(argv.size()), argv.data(), lookup);
+  ASSERT_TRUE(c.ok()) << c.status().message();
+  EXPECT_EQ(c->workers, 5);
+  EXPECT_EQ(c->max_n, 1024u);
+  EXPECT_EQ(c->listen, "0.0.0.0:1");
+  EXPECT_EQ(c->engine, EngineKind::kDirect);
+  EXPECT_EQ(c->max_iterations, 3000);
+}
+
+TEST(Config, RefusesBadValues) {
+  auto parse = [](std::vector<std::string> a) {
+    std::vector<char*> argv;
+    for (auto& s : a) argv.push_back(s.data());
+    return ParseServerConfig(static_cast<int>(argv.size()), argv.data(), nullptr);
+  };
+  EXPECT_FALSE(parse({"--workers", "0"}).ok());
+  EXPECT_FALSE(parse({"--max-n", "8"}).ok());
+  EXPECT_FALSE(parse({"--engine", "gpu"}).ok());
+  EXPECT_FALSE(parse({"--bogus", "1"}).ok());
+  EXPECT_FALSE(parse({"--workers"}).ok());
+  EXPECT_FALSE(parse({"--tls-cert", "a.pem"}).ok());  // without --tls-key
+  EXPECT_EQ(parse({"--help"}).status().code(), Status::Code::kNotFound);
+}
+
+storage::SetRecord Record(uint32_t n, int phi) {
+  storage::SetRecord r;
+  r.key = {n, {1, phi, phi}, "p"};
+  r.points.resize(n, Point2{0.25, 0.5});
+  return r;
+}
+
+TEST(SetLru, EvictsLeastRecentlyUsedByBytes) {
+  const size_t one = CanonicalEntry(Record(64, 0)).ChargedBytes();
+  SetLru lru(3 * one);
+  for (int phi = 0; phi < 3; ++phi) {
+    lru.Put("k" + std::to_string(phi), std::make_shared<CanonicalEntry>(Record(64, phi)));
+  }
+  ASSERT_NE(lru.Get("k0"), nullptr);  // k1 is now the oldest
+  lru.Put("k3", std::make_shared<CanonicalEntry>(Record(64, 3)));
+  EXPECT_EQ(lru.size(), 3u);
+  EXPECT_EQ(lru.Get("k1"), nullptr);
+  EXPECT_NE(lru.Get("k0"), nullptr);
+  EXPECT_NE(lru.Get("k3"), nullptr);
+  EXPECT_LE(lru.bytes(), 3 * one);
+}
+
+TEST(CanonicalEntry, EncodesAlignedPointsAsLittleEndianPairs) {
+  storage::SetRecord r;
+  r.points = {{0.25, 0.125}, {0.5, 0.75}};
+  CanonicalEntry e(r);
+  const std::string plain = *e.Encoded({});
+  ASSERT_EQ(plain.size(), 32u);
+  double v[4];
+  std::memcpy(v, plain.data(), 32);
+  EXPECT_EQ(v[0], 0.25);
+  EXPECT_EQ(v[1], 0.125);
+  EXPECT_EQ(v[3], 0.75);
+  const std::string swapped = *e.Encoded({.swap = true});
+  std::memcpy(v, swapped.data(), 32);
+  EXPECT_EQ(v[0], 0.125);
+  EXPECT_EQ(v[1], 0.25);
+  EXPECT_EQ(e.Encoded({.swap = true}).get(), e.Encoded({.swap = true}).get());  // built once
+}
+
+}  // namespace
+}  // namespace alignset::server
