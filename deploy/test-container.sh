@@ -16,12 +16,14 @@
 #   ALIGNSET_ROOTFS_MAX_DAYS rebuild the cached rootfs after this many days (default 14)
 #   ALIGNSET_HOST_CLI        host alignset binary (default build/client/alignset, built if absent)
 #   ALIGNSET_BUILD_JOBS      compile jobs inside the image build (default 2)
+#   ALIGNSET_TEST_ITERATIONS optimizer iterations of the set the test requests (default 300)
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 CACHE="${ALIGNSET_CACHE_DIR:-$HOME/.cache/alignset}"
 MAX_DAYS="${ALIGNSET_ROOTFS_MAX_DAYS:-14}"
 JOBS="${ALIGNSET_BUILD_JOBS:-2}"
+ITERS="${ALIGNSET_TEST_ITERATIONS:-300}"   # the served set's optimizer budget: a smoke test
 IMAGE="localhost/alignset:test"
 BASE="debian:bookworm"
 SUITE="bookworm"
@@ -121,20 +123,17 @@ if [ ! -f "$stamp" ] || ! pod image exists "$BASE"; then
 fi
 
 # --- 2. image build ---------------------------------------------------------------------
-# Only while the server is not in the tree yet: ship the CLI alone.
-targets=(alignset alignset-server)
-[ -f "$ROOT/server/CMakeLists.txt" ] || targets=(alignset)
 # Bounded cache: wipe the private store when it outgrows its budget.
 if [ "$(du -sm "$STORE" | cut -f1)" -gt 20000 ]; then
   log "container store over 20 GB: removing all images"
   bah rmi --all --force >/dev/null || true
   pod import --quiet "$TARBALL" "$BASE" >/dev/null
 fi
-log "building $IMAGE from deploy/Dockerfile (targets: ${targets[*]}, -j$JOBS)"
+log "building $IMAGE from deploy/Dockerfile (-j$JOBS; log: $CACHE/last-image-build.log)"
 build_log="$CACHE/last-image-build.log"
 if ! nice -n 10 buildah "${CFLAGS[@]}" bud --isolation chroot --network host --pull=never \
       --layers --format docker -f "$ROOT/deploy/Dockerfile" \
-      --build-arg BUILD_JOBS="$JOBS" --build-arg ALIGNSET_TARGETS="${targets[*]}" \
+      --build-arg BUILD_JOBS="$JOBS" \
       -t "$IMAGE" "$ROOT" > "$build_log" 2>&1; then
   tail -40 "$build_log"
   die "image build failed (full log: $build_log)"
@@ -195,18 +194,22 @@ crun "$ctr" -- alignset --help > "$tmp/help.txt" 2>&1 || true
 grep -qi "usage\|alignset" "$tmp/help.txt" || { cat "$tmp/help.txt"; die "alignset --help gave no usage"; }
 log "alignset runs in the image as uid 10001"
 
-if [ "${#targets[@]}" -lt 2 ]; then
-  log "server not in this tree yet: image build and CLI checked only"
-  log "PASS in $(( $(date +%s) - START )) s"
-  exit 0
-fi
+for bin in alignset-server alignset-health-probe; do
+  crun "$ctr" -- sh -c "command -v $bin" >/dev/null || die "$bin is not in the image"
+done
 
-# Host CLI: the project's own build, built here if CI has not built it yet.
+# Host side: the project's CLI and the health probe, built here if CI has not built them.
 HOST_CLI="${ALIGNSET_HOST_CLI:-$ROOT/build/client/alignset}"
 if [ ! -x "$HOST_CLI" ]; then
   log "building the host CLI ($HOST_CLI)"
-  cmake -S "$ROOT" -B "$ROOT/build" -G Ninja >/dev/null
+  [ -f "$ROOT/build/build.ninja" ] || cmake -S "$ROOT" -B "$ROOT/build" -G Ninja >/dev/null
   nice -n 10 ninja -C "$ROOT/build" -j"$JOBS" alignset >/dev/null
+fi
+PROBE="$ROOT/build/health-probe/alignset-health-probe"
+if [ ! -x "$PROBE" ] || [ "$ROOT/deploy/health-probe/health_probe.cc" -nt "$PROBE" ]; then
+  log "building the host health probe"
+  cmake -S "$ROOT/deploy/health-probe" -B "$ROOT/build/health-probe" -G Ninja >/dev/null
+  nice -n 10 ninja -C "$ROOT/build/health-probe" >/dev/null
 fi
 
 port="$("$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
@@ -215,7 +218,7 @@ data="$tmp/data"; mkdir -p "$data"; chown 10001:10001 "$data"
 log "starting alignset-server from the image on $addr (volume $data)"
 # Loopback only: the chroot isolation shares the host's network namespace.
 crun --env ALIGNSET_LISTEN="$addr" --volume "$data:/var/lib/alignset" "$ctr" -- \
-  alignset-server --workers 1 --threads-per-worker 1 > "$tmp/server.log" 2>&1 &
+  alignset-server --workers 1 --threads-per-worker 1 --max-iterations "$ITERS" > "$tmp/server.log" 2>&1 &
 server_pid=$!
 for _ in $(seq 1 40); do inner_pid="$(descendant "$server_pid" alignset-server)" && break; sleep 0.25; done
 [ -n "$inner_pid" ] || { cat "$tmp/server.log"; die "alignset-server process not found"; }
@@ -223,12 +226,12 @@ for _ in $(seq 1 40); do inner_pid="$(descendant "$server_pid" alignset-server)"
 state=""
 for _ in $(seq 1 60); do
   kill -0 "$server_pid" 2>/dev/null || { cat "$tmp/server.log"; die "server exited early"; }
-  if state="$("$HOST_CLI" health --server "$addr" 2>&1)" && grep -q SERVING <<<"$state"; then
+  if state="$("$PROBE" --server "$addr" --timeout 2 2>&1)" && [ "$state" = SERVING ]; then
     break
   fi
   sleep 0.5
 done
-grep -q SERVING <<<"$state" || { cat "$tmp/server.log"; die "health never SERVING: $state"; }
+[ "$state" = SERVING ] || { cat "$tmp/server.log"; die "health never SERVING: $state"; }
 log "health from the host: $state"
 
 # The image's own HEALTHCHECK command, run inside the container against the live server.
@@ -271,4 +274,42 @@ rc=0; wait "$server_pid" || rc=$?
 server_pid=""; inner_pid=""
 [ "$rc" -eq 0 ] || { cat "$tmp/server.log"; die "server exited with status $rc after SIGTERM"; }
 log "server stopped cleanly"
+
+# --- 5. the Kubernetes precompute scripts, run in the image -----------------------------
+# The shard and merge scripts of k8s/precompute/scripts.yaml as the Indexed Job's pods run
+# them: 2 shards of the one-direction space at N=16, then the merge into the data volume
+# that already holds the set served above.
+mkdir -p "$tmp/scripts" "$tmp/shards" "$tmp/work0" "$tmp/work1"
+"$PY" - "$ROOT/deploy/k8s/precompute/scripts.yaml" "$tmp/scripts" <<'PYEOF'
+import sys, yaml
+doc = yaml.safe_load(open(sys.argv[1]))
+for name, text in doc["data"].items():
+    open("%s/%s" % (sys.argv[2], name), "w").write(text)
+PYEOF
+chown -R 10001:10001 "$tmp/shards" "$tmp/work0" "$tmp/work1"
+shard_port="$("$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
+job_env=(--env ALIGNSET_SHARDS=2 --env ALIGNSET_PRECOMPUTE_N=16 --env ALIGNSET_PRECOMPUTE_SPACE=1dir
+         --env ALIGNSET_THREADS=1 --env ALIGNSET_MAX_ITERATIONS="$ITERS"
+         --env ALIGNSET_SHARD_LISTEN="127.0.0.1:$shard_port"
+         --volume "$tmp/scripts:/scripts:ro" --volume "$tmp/shards:/shards")
+for i in 0 1; do
+  crun "${job_env[@]}" --env JOB_COMPLETION_INDEX="$i" --volume "$tmp/work$i:/work" "$ctr" -- \
+    /bin/sh /scripts/shard.sh > "$tmp/shard$i.log" 2>&1 \
+    || { cat "$tmp/shard$i.log"; die "shard.sh failed for index $i"; }
+  [ -s "$tmp/shards/shard-000$i-of-0002.sqlite" ] || die "shard $i wrote no file"
+done
+log "precompute shards 0/2 and 1/2 (N=16, 1dir) written by shard.sh"
+crun "${job_env[@]}" --volume "$data:/var/lib/alignset" "$ctr" -- /bin/sh /scripts/merge.sh \
+  > "$tmp/merge.log" 2>&1 || { cat "$tmp/merge.log"; die "merge.sh failed"; }
+crun --volume "$data:/var/lib/alignset" "$ctr" -- \
+  alignset cache list --db /var/lib/alignset/alignset.sqlite > "$tmp/list.txt" 2>&1 \
+  || { cat "$tmp/list.txt"; die "cache list failed"; }
+totals="$(tail -n 1 "$tmp/list.txt")"
+# 46 canonical one-direction sets at N=16 from the shards, plus the N=64 set served above.
+[[ "$totals" == "47 sets (47 one-direction, 0 two-direction)"* ]] \
+  || { cat "$tmp/list.txt"; die "merged cache holds: $totals"; }
+crun --volume "$data:/var/lib/alignset" "$ctr" -- \
+  alignset cache verify --db /var/lib/alignset/alignset.sqlite > "$tmp/verify.txt" 2>&1 \
+  || { cat "$tmp/verify.txt"; die "cache verify failed after the merge"; }
+log "merge.sh: $totals; cache verify ok"
 log "PASS in $(( $(date +%s) - START )) s"

@@ -230,8 +230,8 @@ def check_compose(f, doc, errors):
             elif cond["condition"] == "service_healthy" and "healthcheck" not in services[dep]:
                 errors.append("%s: %s waits for %s to be healthy, which has no healthcheck" % (f, name, dep))
         hc = s.get("healthcheck", {}).get("test", [])
-        if hc and "health" not in hc:
-            errors.append("%s: service %s health check does not use `alignset health`" % (f, name))
+        if hc and "alignset-health-probe" not in hc:
+            errors.append("%s: service %s health check does not use alignset-health-probe" % (f, name))
 
 
 def load(paths):
@@ -298,7 +298,7 @@ def self_test(paths):
         "root user": ("StatefulSet", lambda d: d["spec"]["template"]["spec"]["securityContext"].__setitem__("runAsUser", 0)),
         "selector mismatch": ("StatefulSet", lambda d: d["spec"]["selector"]["matchLabels"].__setitem__("app.kubernetes.io/name", "x")),
         "request above limit": ("StatefulSet", lambda d: sts(d)["resources"]["requests"].__setitem__("memory", "3Gi")),
-        "unset $(VAR)": ("StatefulSet", lambda d: sts(d)["args"].append("$(ALIGNSET_NOPE)")),
+        "unset $(VAR)": ("StatefulSet", lambda d: sts(d).setdefault("args", []).append("$(ALIGNSET_NOPE)")),
         "service port name": ("Service", lambda d: d["spec"]["ports"][0].__setitem__("targetPort", "http")),
         "bad enum": ("Service", lambda d: d["spec"].__setitem__("type", "Internal")),
         "shard count mismatch": ("Job", lambda d: d["spec"].__setitem__("completions", 63)
