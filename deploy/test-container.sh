@@ -298,7 +298,16 @@ for i in 0 1; do
     || { cat "$tmp/shard$i.log"; die "shard.sh failed for index $i"; }
   [ -s "$tmp/shards/shard-000$i-of-0002.sqlite" ] || die "shard $i wrote no file"
 done
-log "precompute shards 0/2 and 1/2 (N=16, 1dir) written by shard.sh"
+# Each shard alone: 23 of the 46 keys (the canonical order split in two).
+for i in 0 1; do
+  crun --volume "$tmp/shards:/shards" "$ctr" -- alignset cache list \
+    --db "/shards/shard-000$i-of-0002.sqlite" > "$tmp/list$i.txt" 2>&1 \
+    || { cat "$tmp/list$i.txt" "$tmp/shard$i.log"; die "cache list of shard $i failed"; }
+  shard_total="$(tail -n 1 "$tmp/list$i.txt")"
+  [[ "$shard_total" == "23 sets (23 one-direction, 0 two-direction)"* ]] \
+    || { cat "$tmp/list$i.txt" "$tmp/shard$i.log"; die "shard $i holds: $shard_total"; }
+done
+log "shard.sh wrote shards 0/2 and 1/2 (N=16, 1dir), 23 sets each"
 crun "${job_env[@]}" --volume "$data:/var/lib/alignset" "$ctr" -- /bin/sh /scripts/merge.sh \
   > "$tmp/merge.log" 2>&1 || { cat "$tmp/merge.log"; die "merge.sh failed"; }
 crun --volume "$data:/var/lib/alignset" "$ctr" -- \
