@@ -163,6 +163,10 @@ log "image config ok (user non-root, 50051 exposed, volume, HEALTHCHECK)"
 
 # --- 4. run the image -------------------------------------------------------------------
 ctr="$(bah from --pull=never "$IMAGE")"
+# The working container drops the image's VOLUME declaration (the image keeps it, checked
+# above): with it, buildah 1.28's `run --isolation chroot` now and then mounts a fresh
+# directory over /var/lib/alignset instead of the --volume given for that path.
+bah config --volume /var/lib/alignset- "$ctr"
 tmp="$(mktemp -d)"
 server_pid=""   # the host's `buildah run`
 inner_pid=""    # alignset-server itself: chroot isolation shares the host's PID namespace
@@ -308,7 +312,7 @@ for i in 0 1; do
     || { cat "$tmp/list$i.txt" "$tmp/shard$i.log"; die "shard $i holds: $shard_total"; }
 done
 log "shard.sh wrote shards 0/2 and 1/2 (N=16, 1dir), 23 sets each"
-crun "${job_env[@]}" --volume "$data:/var/lib/alignset" "$ctr" -- /bin/sh /scripts/merge.sh \
+crun --volume "$data:/var/lib/alignset" "${job_env[@]}" "$ctr" -- /bin/sh /scripts/merge.sh \
   > "$tmp/merge.log" 2>&1 || { cat "$tmp/merge.log"; die "merge.sh failed"; }
 crun --volume "$data:/var/lib/alignset" "$ctr" -- \
   alignset cache list --db /var/lib/alignset/alignset.sqlite > "$tmp/list.txt" 2>&1 \
@@ -316,7 +320,7 @@ crun --volume "$data:/var/lib/alignset" "$ctr" -- \
 totals="$(tail -n 1 "$tmp/list.txt")"
 # 46 canonical one-direction sets at N=16 from the shards, plus the N=64 set served above.
 [[ "$totals" == "47 sets (47 one-direction, 0 two-direction)"* ]] \
-  || { cat "$tmp/list.txt"; die "merged cache holds: $totals"; }
+  || { cat "$tmp/merge.log" "$tmp/list.txt"; die "merged cache holds: $totals"; }
 crun --volume "$data:/var/lib/alignset" "$ctr" -- \
   alignset cache verify --db /var/lib/alignset/alignset.sqlite > "$tmp/verify.txt" 2>&1 \
   || { cat "$tmp/verify.txt"; die "cache verify failed after the merge"; }
