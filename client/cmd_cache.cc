@@ -175,8 +175,9 @@ int RunList(int argc, char** argv) {
   }
   auto stats = (*cache)->Stats();
   if (!stats.ok()) return Fail("list", stats.status());
-  std::printf("%lld sets (%lld one-direction, %lld two-direction), %lld bytes of points\n",
-              static_cast<long long>(stats->sets), static_cast<long long>(stats->one_direction_sets),
+  std::printf("%zu listed; the file holds %lld sets (%lld one-direction, %lld two-direction), "
+              "%lld bytes of points\n",
+              rows->size(), static_cast<long long>(stats->sets), static_cast<long long>(stats->one_direction_sets),
               static_cast<long long>(stats->two_direction_sets), static_cast<long long>(stats->bytes));
   return 0;
 }

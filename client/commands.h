@@ -6,6 +6,9 @@ namespace alignset::cli {
 // exit status; errors are printed as one line on stderr.
 int RunOptimize(int argc, char** argv);
 int RunEvaluate(int argc, char** argv);
+int RunSample(int argc, char** argv);
+int RunAlign(int argc, char** argv);
+int RunVariance(int argc, char** argv);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 int RunCache(int argc, char** argv);

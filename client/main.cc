@@ -16,7 +16,13 @@ void PrintUsage() {
                "            optimize an aligned set (DEG: spectral direction = edge normal)\n"
                "  evaluate  FILE --normal DEG [--shifts K] [--seed S]\n"
                "            CP-rotated variance on a step edge and strip periodograms,\n"
-               "            beside an Owen-scrambled Sobol set of the same N\n");
+               "            beside an Owen-scrambled Sobol set of the same N\n"
+               "  sample    KIND --n N [--seed S] [--shear DEG] --out FILE\n"
+               "            a set from a classic sampler ('alignset sample --list' names them)\n"
+               "  align     FILE --canonical PHI --dir DEG [--canonical PHI2 --dir DEG2] --out FILE\n"
+               "            align a canonical set onto requested directions (swap / invert)\n"
+               "  variance  FILE... --normal DEG [--normal DEG] [--shifts K] [--seed S]\n"
+               "            CP-rotated variance on step edges, one tab-separated line each\n");
 #ifdef ALIGNSET_HAVE_STORAGE
   std::fprintf(stderr,
                "  cache     export|import|merge|verify|list ...\n"
@@ -46,6 +52,9 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   if (cmd == "optimize") return alignset::cli::RunOptimize(argc - 2, argv + 2);
   if (cmd == "evaluate") return alignset::cli::RunEvaluate(argc - 2, argv + 2);
+  if (cmd == "sample") return alignset::cli::RunSample(argc - 2, argv + 2);
+  if (cmd == "align") return alignset::cli::RunAlign(argc - 2, argv + 2);
+  if (cmd == "variance") return alignset::cli::RunVariance(argc - 2, argv + 2);
 #ifdef ALIGNSET_HAVE_STORAGE
   if (cmd == "cache") return alignset::cli::RunCache(argc - 2, argv + 2);
 #endif

@@ -91,9 +91,10 @@ StatusOr<size_t> CanonicalKeyIndex(const CanonicalDirections& key);
 // in [0,1) (below 1/2 there are far more doubles than above), so Align works
 // on each coordinate's 53-bit fixed-point value q = round(x * 2^53) mod 2^53,
 // inverting as q -> (2^53 - q) mod 2^53, and returns q * 2^-53 exactly.
-// Coordinates already on that grid (every coordinate >= 1/2, and every value
-// the samplers produce) pass unchanged through the identity; others move by
-// at most 2^-54. On the grid the group acts exactly: Align(Align(p, a), b) ==
+// Coordinates already on that grid (every coordinate >= 1/2, every multiple
+// of 2^-53 such as Owen-Sobol's 2^-32 digits or Pcg32::NextDouble) pass
+// unchanged through the identity; others (only possible below 1/2) move by
+// at most 2^-54, far below anything a spectrum up to |v| ~ 10^3 can see. On the grid the group acts exactly: Align(Align(p, a), b) ==
 // Align(p, Compose(a, b)) and Align(Align(p, a), Inverse(a)) == Align(p, {})
 // bit for bit. Inputs outside [0,1) are wrapped first.
 PointSet Align(const PointSet& points, AlignOps ops);

@@ -136,7 +136,8 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   }
   spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
                "max iterations {}{}{}",
-               config.listen, impl->port, impl->db_path, config.workers, config.threads_per_worker,
+               config.listen, impl->port, impl->db_path, config.workers,
+               config.threads_per_worker > 0 ? std::to_string(config.threads_per_worker) : "all",
                EngineKindName(config.engine), config.max_n, config.max_iterations,
                config.tls_cert.empty() ? "" : ", TLS", token.empty() ? "" : ", bearer token");
   return std::unique_ptr<ServerInstance>(new ServerInstance(std::move(impl)));

@@ -158,7 +158,11 @@ grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
   }
   auto entry = (*ticket)->Result();
   if (!entry.ok()) return ToGrpc(entry.status());
-  FillSet(*canon, key, **entry, (*ticket)->from_cache(), resp);
+  const bool from_cache = (*ticket)->from_cache();
+  FillSet(*canon, key, **entry, from_cache, resp);
+  // Hits are the hot path: logged only at debug level.
+  spdlog::debug("served {} as {} ({})", KeyString(key), ToString(canon->ops),
+                from_cache ? "hit" : "optimized");
   return grpc::Status::OK;
 }
 

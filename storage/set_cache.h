@@ -103,6 +103,7 @@ class SetCache {
   // NotFound on a miss; DataLoss when the stored blob fails its checksum
   // (callers treat that as a miss and recompute; Put replaces the row).
   virtual StatusOr<SetRecord> Get(const SetKey& key) = 0;
+  // Presence only: reads no blob and so does not verify it (Get does).
   virtual StatusOr<bool> Contains(const SetKey& key) = 0;
   // Keys (optionally for one N / one profile), in (n, count, phi1, phi2) order.
   virtual StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n = std::nullopt,

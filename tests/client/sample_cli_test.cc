@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "client/point_file.h"
+#include "core/canonical.h"
+#include "core/samplers.h"
+#include "core/shear.h"
+
+namespace alignset::cli {
+namespace {
+
+struct CliRun {
+  int exit_code;
+  std::string err;
+};
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "/alignset_sample_" + std::to_string(getpid()) + "_" + name;
+}
+
+CliRun Cli(const std::string& args) {
+  const std::string err = TempPath("stderr.txt");
+  const std::string cmd = std::string(ALIGNSET_CLI_PATH) + " " + args + " >/dev/null 2>" + err;
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(err);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+int Lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(SampleCli, WritesTheRegistrysSetAndShears) {
+  const std::string out = TempPath("p.txt");
+  ASSERT_EQ(Cli("sample pmj02bn --n 256 --seed 4 --out " + out).exit_code, 0);
+  auto read = ReadPointFile(out);
+  ASSERT_TRUE(read.ok());
+  EXPECT_EQ(*read, *Sample("pmj02bn", 256, 4));  // %.17g round-trips doubles
+  ASSERT_EQ(Cli("sample pmj02bn --n 256 --seed 4 --shear 25 --out " + out).exit_code, 0);
+  EXPECT_EQ(*ReadPointFile(out), Shear(*Sample("pmj02bn", 256, 4), 25));
+  std::remove(out.c_str());
+}
+
+TEST(SampleCli, BadInputIsOneLineAndNonZero) {
+  const std::string out = TempPath("bad.txt");
+  for (const std::string& args : std::vector<std::string>
+       {"sample jittered --n 1000 --out " + out, "sample nope --n 16 --out " + out,
+        "sample random --n 0 --out " + out, std::string("sample random --n 16"), "sample --n 16 --out " + out,
+        "sample random --n 16 --shear inf --out " + out, "sample random --n abc --out " + out}) {
+    const CliRun r = Cli(args);
+    EXPECT_NE(r.exit_code, 0) << args;
+    EXPECT_EQ(Lines(r.err), 1) << args << ": " << r.err;
+  }
+  EXPECT_NE(Cli("sample jittered --n 1000 --out " + out).err.find("961 or 1024"), std::string::npos);
+}
+
+TEST(AlignCli, AlignsFromTheMatchingKeyOnly) {
+  const std::string in = TempPath("in.txt"), out = TempPath("out.txt");
+  const PointSet p = *Sample("owen-sobol", 64, 1);
+  ASSERT_TRUE(WritePointFile(in, p).ok());
+  ASSERT_EQ(Cli("align " + in + " --canonical 30 --dir 120 --out " + out).exit_code, 0);
+  EXPECT_EQ(*ReadPointFile(out), Align(p, {true, true, false}));
+  const CliRun wrong = Cli("align " + in + " --canonical 20 --dir 120 --out " + out);
+  EXPECT_NE(wrong.exit_code, 0);
+  EXPECT_EQ(Lines(wrong.err), 1);
+  std::remove(in.c_str());
+  std::remove(out.c_str());
+}
+
+}  // namespace
+}  // namespace alignset::cli

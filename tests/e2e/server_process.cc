@@ -1,0 +1,90 @@
+#include "tests/e2e/server_process.h"
+
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+namespace alignset::e2e {
+
+ServerProcess::ServerProcess(const std::string& dir, const std::vector<std::string>& extra) {
+  db_path_ = dir + "/cache.sqlite";
+  const std::string port_file = dir + "/port";
+  std::filesystem::remove(port_file);
+  std::vector<std::string> args = {ALIGNSET_SERVER_PATH, "--listen", "127.0.0.1:0", "--port-file",
+                                   port_file, "--db", db_path_, "--log-level", "warn"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const std::string log = dir + "/server.log";
+  pid_ = fork();
+  if (pid_ == 0) {
+    FILE* f = std::fopen(log.c_str(), "a");
+    if (f) {
+      dup2(fileno(f), STDOUT_FILENO);
+      dup2(fileno(f), STDERR_FILENO);
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  if (pid_ < 0) {
+    error_ = "fork failed";
+    return;
+  }
+  for (int i = 0; i < 300; ++i) {  // up to 30 s on a loaded machine
+    std::ifstream in(port_file);
+    if (in >> port_ && port_ > 0) return;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      std::ifstream l(log);
+      std::string text((std::istreambuf_iterator<char>(l)), std::istreambuf_iterator<char>());
+      error_ = "alignset-server exited during start-up: " + text;
+      pid_ = -1;
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  error_ = "alignset-server wrote no port file within 30 s";
+}
+
+int ServerProcess::Stop(int sig) {
+  if (pid_ <= 0) return -1;
+  kill(pid_, sig);
+  int status = 0;
+  waitpid(pid_, &status, 0);
+  pid_ = -1;
+  return status;
+}
+
+ServerProcess::~ServerProcess() { Stop(SIGTERM); }
+
+TempDir::TempDir() {
+  char tmpl[] = "/tmp/alignset-e2e-XXXXXX";
+  if (mkdtemp(tmpl)) path_ = tmpl;
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  if (!path_.empty()) std::filesystem::remove_all(path_, ec);
+}
+
+CommandResult RunCommand(const std::string& command) {
+  CommandResult r;
+  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t got;
+  while ((got = std::fread(buf, 1, sizeof(buf), p)) > 0) r.output.append(buf, got);
+  const int status = pclose(p);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace alignset::e2e

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace alignset::e2e {
+
+// alignset-server as a child process: started on 127.0.0.1 with port 0 and a
+// --port-file, so tests never race for a port. The destructor stops it with
+// SIGTERM (or reaps it if a test killed it).
+class ServerProcess {
+ public:
+  // `dir` holds the database and the port file; `extra` are more flags.
+  ServerProcess(const std::string& dir, const std::vector<std::string>& extra);
+  ~ServerProcess();
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  // Empty when it came up; otherwise why not.
+  const std::string& error() const { return error_; }
+  std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
+  int port() const { return port_; }
+  const std::string& db_path() const { return db_path_; }
+  pid_t pid() const { return pid_; }
+
+  // Sends `sig` and waits for the exit; returns the wait status.
+  int Stop(int sig);
+
+ private:
+  std::string error_;
+  std::string db_path_;
+  pid_t pid_ = -1;
+  int port_ = 0;
+};
+
+// A fresh directory under /tmp, removed by the destructor.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// Runs a command line through /bin/sh; returns its exit status and output.
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+CommandResult RunCommand(const std::string& command);
+
+}  // namespace alignset::e2e

@@ -1,0 +1,118 @@
+// `alignset cache ...` end to end, through the real binary.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "storage/set_cache.h"
+#include "tests/storage/test_util.h"
+
+namespace alignset::storage {
+namespace {
+
+using testing::Key1;
+using testing::Key2;
+using testing::MakeRecord;
+using testing::RawDb;
+using testing::TempDir;
+
+struct CliRun {
+  int rc = -1;
+  std::string out;  // stdout and stderr
+};
+
+CliRun Cli(const std::string& args) {
+  CliRun r;
+  const std::string cmd = std::string(ALIGNSET_CLI_PATH) + " cache " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (p == nullptr) return r;
+  char buf[4096];
+  size_t got;
+  while ((got = fread(buf, 1, sizeof(buf), p)) > 0) r.out.append(buf, got);
+  const int status = pclose(p);
+  r.rc = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+void WriteShard(const std::string& path, const std::vector<SetKey>& keys) {
+  auto c = SetCache::Open(path);
+  ASSERT_TRUE(c.ok());
+  for (const SetKey& k : keys) ASSERT_TRUE((*c)->Put(MakeRecord(k, 1)).ok());
+}
+
+int64_t Count(const std::string& path) {
+  auto c = SetCache::Open(path);
+  return c.ok() ? (*c)->Stats()->sets : -1;
+}
+
+TEST(CacheCli, MergeVerifyListExportImport) {
+  TempDir dir;
+  const std::string a = dir.File("a.sqlite"), b = dir.File("b.sqlite"), m = dir.File("m.sqlite");
+  WriteShard(a, {Key1(64, 0), Key1(64, 1), Key2(128, 2, 3)});
+  WriteShard(b, {Key1(64, 1), Key1(256, 40)});
+
+  CliRun r = Cli("merge --out " + m + " " + a + " " + b);
+  ASSERT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(Count(m), 4);
+  EXPECT_FALSE(std::filesystem::exists(m + ".partial"));
+  EXPECT_EQ(Cli("merge --out " + m + " " + a).rc, 2);  // refuses to overwrite
+
+  r = Cli("verify --db " + m);
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("checked 4 sets, 0 damaged"), std::string::npos) << r.out;
+
+  r = Cli("list --db " + m);
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("4 listed; the file holds 4 sets (3 one-direction, 1 two-direction)"),
+            std::string::npos) << r.out;
+  r = Cli("list --db " + m + " --n 64");
+  EXPECT_EQ(r.rc, 0);
+  EXPECT_NE(r.out.find("2 listed; the file holds 4 sets"), std::string::npos) << r.out;
+
+  const std::string e = dir.File("e.sqlite");
+  r = Cli("export --db " + m + " --out " + e);
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(Count(e), 4);
+  EXPECT_EQ(Cli("export --db " + m + " --out " + e).rc, 2);
+
+  const std::string c = dir.File("c.sqlite");
+  WriteShard(c, {Key1(512, 9), Key1(64, 0)});
+  r = Cli("import --db " + e + " " + c);
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("added 1, already present 1, damaged (skipped) 0"), std::string::npos) << r.out;
+  EXPECT_EQ(Count(e), 5);
+}
+
+TEST(CacheCli, DamageIsReportedWithExitStatusOne) {
+  TempDir dir;
+  const std::string a = dir.File("a.sqlite");
+  WriteShard(a, {Key1(64, 0), Key1(64, 1)});
+  {
+    RawDb raw(a);
+    ASSERT_TRUE(raw.FlipBlobByte(Key1(64, 1), 17));
+  }
+  CliRun r = Cli("verify --db " + a);
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("DAMAGED n=64 dirs=1:1"), std::string::npos) << r.out;
+  r = Cli("merge --out " + dir.File("m.sqlite") + " " + a);
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_EQ(Count(dir.File("m.sqlite")), 1);
+}
+
+TEST(CacheCli, UsageErrorsExitTwo) {
+  TempDir dir;
+  EXPECT_EQ(Cli("").rc, 2);
+  EXPECT_EQ(Cli("frobnicate").rc, 2);
+  EXPECT_EQ(Cli("verify").rc, 2);
+  EXPECT_EQ(Cli("verify --db " + dir.File("missing.sqlite")).rc, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir.File("missing.sqlite")));
+  EXPECT_EQ(Cli("import --db " + dir.File("x.sqlite")).rc, 2);
+  EXPECT_EQ(Cli("import --db " + dir.File("x.sqlite") + " " + dir.File("nope")).rc, 2);
+  EXPECT_EQ(Cli("list --db " + dir.File("x.sqlite") + " --bogus 1").rc, 2);
+  EXPECT_EQ(Cli("help").rc, 0);
+}
+
+}  // namespace
+}  // namespace alignset::storage
