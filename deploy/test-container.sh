@@ -141,7 +141,7 @@ fi
 log "image built: $(pod image inspect --format '{{.Size}}' "$IMAGE" | awk '{printf "%.0f MB", $1/1e6}')"
 
 # --- 3. image configuration -------------------------------------------------------------
-bah inspect --type image "$IMAGE" | "$PY" -c '
+hc_cmd="$(bah inspect --type image "$IMAGE" | "$PY" -c '
 import json, sys
 cfg = json.load(sys.stdin)["Docker"]["config"]
 errors = []
@@ -157,8 +157,8 @@ if "health" not in " ".join(hc):
     errors.append("no gRPC health check (Healthcheck=%r)" % hc)
 if errors:
     sys.exit("image config: " + "; ".join(errors))
-print(" ".join(hc[1:]) if hc[0] == "CMD-SHELL" else " ".join(hc[1:]))
-' > "$CACHE/healthcheck.cmd" || die "image configuration check failed"
+print(hc[1] if hc[0] == "CMD-SHELL" else " ".join(hc[1:]))
+')" || die "image configuration check failed"
 log "image config ok (user non-root, 50051 exposed, volume, HEALTHCHECK)"
 
 # --- 4. run the image -------------------------------------------------------------------
@@ -239,7 +239,6 @@ done
 log "health from the host: $state"
 
 # The image's own HEALTHCHECK command, run inside the container against the live server.
-hc_cmd="$(cat "$CACHE/healthcheck.cmd")"
 crun --env ALIGNSET_LISTEN="$addr" "$ctr" -- /bin/sh -c "$hc_cmd" > "$tmp/hc.txt" 2>&1 \
   || { cat "$tmp/hc.txt"; die "image HEALTHCHECK failed against the running server"; }
 log "image HEALTHCHECK passes"
