@@ -11,6 +11,7 @@ PACKAGES=(
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
   libspdlog-dev libfmt-dev openssl
   python3 python3-numpy python3-matplotlib
+  yamllint buildah podman debootstrap
 )
 
 missing=()
