@@ -59,6 +59,10 @@ double DefaultLearningRate(const std::vector<Frequency>& k) {
   return 0.05 / vmax;
 }
 
+double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n) {
+  return options.sw_weight > 0.0 ? options.sw_weight : static_cast<double>(n);
+}
+
 std::string StopReasonName(StopReason r) {
   switch (r) {
     case StopReason::kMaxIterations: return "iteration budget";
@@ -131,6 +135,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   const SlicedWasserstein sw(problem.n, dirs);
 
   double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
+  const double sw_weight = EffectiveSwWeight(options, problem.n);
 
   AdamState cur;
   cur.x = OwenScrambledSobol(problem.n, problem.seed);
@@ -138,7 +143,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   cur.v.assign(problem.n, {0.0, 0.0});
   SpectrumEvaluation scratch;
   std::vector<Point2> sw_grad;
-  EvaluateTotal(cur.x, engine, sw, options.sw_weight, &scratch, &sw_grad, &cur);
+  EvaluateTotal(cur.x, engine, sw, sw_weight, &scratch, &sw_grad, &cur);
   result.initial = cur.loss;
 
   AdamState accepted = cur;
@@ -166,7 +171,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   while (it < options.max_iterations) {
     ++it;
     AdamStep(&cur, options, lr);
-    EvaluateTotal(cur.x, engine, sw, options.sw_weight, &scratch, &sw_grad, &cur);
+    EvaluateTotal(cur.x, engine, sw, sw_weight, &scratch, &sw_grad, &cur);
 
     const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
     const double now = watch_total ? cur.loss.total : cur.loss.spectrum;

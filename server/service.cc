@@ -132,7 +132,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_radius(fp.radius);
   p->set_max_iterations(opt.max_iterations);
   p->set_learning_rate(opt.learning_rate);
-  p->set_sw_weight(opt.sw_weight);
+  p->set_sw_weight(EffectiveSwWeight(opt, key.n));
   p->set_seed(scheduler_->options().seed);
   p->set_algorithm_version(storage::kAlgorithmVersion);
   md->set_from_cache(from_cache);

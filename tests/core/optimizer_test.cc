@@ -48,7 +48,7 @@ TEST(Optimizer, ReducesBothLossesAndStaysInTheTorus) {
     EXPECT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1);
   }
   // The reported loss is the loss of the returned set.
-  const LossTerms again = EvaluateLoss(r->points, {30}, r->frequency_params, o.sw_weight, engine);
+  const LossTerms again = EvaluateLoss(r->points, {30}, r->frequency_params, EffectiveSwWeight(o, 256), engine);
   EXPECT_NEAR(again.total, r->final_loss.total, 1e-12 * std::max(1.0, again.total));
 }
 
@@ -98,14 +98,18 @@ TEST(Optimizer, RevertRuleUndoesDivergentStepsAndDividesTheRate) {
 
 TEST(Optimizer, LiteralRevertOnAnyRiseCollapsesTheRate) {
   // Documents why the trigger looks at the spectrum loss with a 10% margin:
-  // reverting on every rise of the total loss drives the rate to the floor.
+  // with the paper's literal reading (c = 10, revert on any rise of the
+  // total loss) the SW jumps of points wrapping across the torus edge keep
+  // reverting and dividing the rate.
   DirectEngine engine(2);
   OptimizerOptions literal;
+  literal.sw_weight = 10;
   literal.max_iterations = 400;
   literal.divergence_threshold = 0.0;
   literal.divergence_signal = DivergenceSignal::kTotalLoss;
   auto r = Optimize(Problem(256, {30}), literal, engine);
   OptimizerOptions ours;
+  ours.sw_weight = 10;
   ours.max_iterations = 400;
   auto s = Optimize(Problem(256, {30}), ours, engine);
   ASSERT_TRUE(r.ok() && s.ok());
