@@ -1,9 +1,21 @@
 #!/usr/bin/env bash
-# The test command: installs dependencies, builds, runs the whole test suite.
+# The test command: installs dependencies, builds, runs the whole test suite:
+# the GoogleTest suites (core, storage, server, end-to-end over loopback), the
+# Kubernetes manifest checks, and, as root, the real container image build and
+# run (deploy/test-container.sh). ALIGNSET_SKIP_CONTAINER=1 leaves the image
+# test out (it needs root and takes minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 BUILD_DIR="${BUILD_DIR:-build}"
-cd "$BUILD_DIR"
-ctest -j "${JOBS:-$(nproc)}" --output-on-failure --timeout 900
+(cd "$BUILD_DIR" && ctest -j "${JOBS:-$(nproc)}" --output-on-failure --timeout 900)
+
+bash deploy/check-manifests.sh
+if [ "${ALIGNSET_SKIP_CONTAINER:-0}" = 1 ]; then
+  echo "test.sh: container image test skipped (ALIGNSET_SKIP_CONTAINER=1)"
+elif [ "$(id -u)" -ne 0 ]; then
+  echo "test.sh: container image test needs root; run 'sudo bash deploy/test-container.sh'"
+else
+  ALIGNSET_HOST_CLI="$BUILD_DIR/client/alignset" bash deploy/test-container.sh
+fi
