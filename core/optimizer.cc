@@ -99,6 +99,9 @@ Status ValidateOptions(const OptimizerOptions& o) {
     return Status::InvalidArgument("sw_weight must be finite and >= 0");
   }
   if (!(o.revert_divisor > 1.0)) return Status::InvalidArgument("revert_divisor must be > 1");
+  if (!(o.anneal_ratio > 0.0 && o.anneal_ratio <= 1.0)) {
+    return Status::InvalidArgument("anneal_ratio must be in (0, 1]");
+  }
   if (!(o.plateau_factor > 0.0 && o.plateau_factor <= 1.0)) {
     return Status::InvalidArgument("plateau_factor must be in (0, 1]");
   }
@@ -167,9 +170,12 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     return progress(info);
   };
 
+  const double anneal_step =
+      options.max_iterations > 0 ? std::pow(options.anneal_ratio, 1.0 / options.max_iterations) : 1.0;
   int it = 0;
   while (it < options.max_iterations) {
     ++it;
+    lr *= anneal_step;
     AdamStep(&cur, options, lr);
     EvaluateTotal(cur.x, engine, sw, sw_weight, &scratch, &sw_grad, &cur);
 

@@ -67,6 +67,10 @@ struct OptimizerOptions {
   int stall_iterations = 200;
   double stall_tolerance = 1e-3;
   double plateau_factor = 0.5;
+  // Annealing: the learning rate is multiplied every iteration by the factor
+  // that takes it to `anneal_ratio` times its start at `max_iterations` (on
+  // top of the revert and plateau rules). 1 keeps it constant.
+  double anneal_ratio = 1.0;
   // The run stops once the learning rate falls below this.
   double min_learning_rate = 1e-7;
   // Call the progress callback every this many iterations (and at the end).

@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 112,
+static_assert(sizeof(OptimizerOptions) == 120,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -61,6 +61,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "stall_iterations", o.stall_iterations);
   Field(t, "stall_tolerance", o.stall_tolerance);
   Field(t, "plateau_factor", o.plateau_factor);
+  Field(t, "anneal_ratio", o.anneal_ratio);
   Field(t, "min_learning_rate", o.min_learning_rate);
   // progress_every is left out on purpose: it only sets how often the
   // callback runs and never changes the optimized set.

@@ -51,6 +51,7 @@ TEST(ProfileId, EveryParameterChangesTheId) {
       {"stall_iterations", [](auto&, auto& o, auto&, auto&) { o.stall_iterations = 100; }},
       {"stall_tolerance", [](auto&, auto& o, auto&, auto&) { o.stall_tolerance = 1e-4; }},
       {"plateau_factor", [](auto&, auto& o, auto&, auto&) { o.plateau_factor = 0.25; }},
+      {"anneal_ratio", [](auto&, auto& o, auto&, auto&) { o.anneal_ratio = 0.01; }},
       {"min_learning_rate", [](auto&, auto& o, auto&, auto&) { o.min_learning_rate = 1e-8; }},
       {"seed", [](auto&, auto&, auto& s, auto&) { s += 1; }},
       {"algorithm_version", [](auto&, auto&, auto&, auto& v) { v += 1; }},
@@ -102,12 +103,13 @@ TEST(ProfileText, CanonicalSerialization) {
   o.stall_iterations = 200;
   o.stall_tolerance = 0.001;
   o.plateau_factor = 0.5;
+  o.anneal_ratio = 1.0;
   o.min_learning_rate = 1e-7;
   EXPECT_EQ(ProfileText({40.0, 3.0, 12.5}, o, 18446744073709551615ull, 1),
             "alignset-profile-v1;algorithm_version=1;seed=18446744073709551615;length=40;width=3;"
             "radius=12.5;max_iterations=500;learning_rate=0.002;sw_weight=10;beta1=0.9;"
             "beta2=0.999;epsilon=1e-12;divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
-            "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;min_learning_rate=1e-07;");
+            "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;anneal_ratio=1;min_learning_rate=1e-07;");
 }
 
 }  // namespace
