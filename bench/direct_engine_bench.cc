@@ -31,9 +31,9 @@ void BM_DirectIteration(benchmark::State& state) {
   state.counters["pairs_per_s"] = benchmark::Counter(
       2.0 * n * static_cast<double>(k.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK(BM_DirectIteration)->Arg(4096)->Arg(16384)->Unit(benchmark::kMillisecond)
+BENCHMARK(BM_DirectIteration)->Arg(4096)->Arg(16384)->Unit(benchmark::kMillisecond)->UseRealTime()
     ->Repetitions(5)->ReportAggregatesOnly(true);
-BENCHMARK(BM_DirectIteration)->Arg(65536)->Unit(benchmark::kMillisecond)->Iterations(1)
+BENCHMARK(BM_DirectIteration)->Arg(65536)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)
     ->Repetitions(3)->ReportAggregatesOnly(true);
 
 void BM_DirectEndToEnd(benchmark::State& state) {
@@ -55,7 +55,7 @@ void BM_DirectEndToEnd(benchmark::State& state) {
   }
   state.counters["iterations"] = iterations;
 }
-BENCHMARK(BM_DirectEndToEnd)->Arg(4096)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_DirectEndToEnd)->Arg(4096)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 }  // namespace alignset
