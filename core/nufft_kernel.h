@@ -12,8 +12,9 @@ namespace alignset {
 // relative tolerance: each extra grid point of support buys about one decimal
 // digit.
 // Degree of the polynomial that stands for each kernel tap (see
-// EsKernel::Weights): accurate to ~1/20 of the tolerance the width stands for.
-constexpr int TapPolynomialDegree(int width) { return width + 4; }
+// EsKernel::Weights): one more than the width already reaches the error of
+// the kernel's own truncation at the support ends (~tolerance / 20).
+constexpr int TapPolynomialDegree(int width) { return width + 1; }
 
 class EsKernel {
  public:

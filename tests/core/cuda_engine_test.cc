@@ -21,7 +21,7 @@ namespace {
 // The CUDA engine, or the reason the test cannot run here.
 std::unique_ptr<SpectralEngine> CudaOrReason(std::string* reason) {
 #ifndef ALIGNSET_HAVE_CUDA
-  *reason = "the CUDA engine is not built in this binary (no nvcc at configure time)";
+  *reason = "the CUDA engine is not built in this binary (ALIGNSET_CUDA=OFF or no nvcc found)";
   return nullptr;
 #else
   auto engine = MakeSpectralEngine(EngineKind::kCuda, 2);
