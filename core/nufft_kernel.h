@@ -12,8 +12,9 @@ namespace alignset {
 // relative tolerance: each extra grid point of support buys about one decimal
 // digit.
 // Degree of the polynomial that stands for each kernel tap (see
-// EsKernel::Weights): accurate to ~1/20 of the tolerance the width stands for.
-constexpr int TapPolynomialDegree(int width) { return width + 4; }
+// EsKernel::Weights): one more than the width already reaches the error of
+// the kernel's own truncation at the support ends (~tolerance / 20).
+constexpr int TapPolynomialDegree(int width) { return width + 1; }
 
 class EsKernel {
  public:
@@ -34,9 +35,9 @@ class EsKernel {
   // first = ceil(x - width / 2). Returns first.
   //
   // Each tap is a smooth function of the fractional offset, tabulated as a
-  // polynomial (Chebyshev interpolant, evaluated by Horner's rule across all
-  // taps at once): a few vectorized multiply-adds instead of an exp and a
-  // sqrt per tap, accurate to ~1e-13 of phi's maximum.
+  // polynomial (Chebyshev interpolant, evaluated by Horner's rule): a few
+  // vectorizable multiply-adds instead of an exp and a sqrt per tap,
+  // accurate to about tolerance / 20 of phi's maximum.
   int Weights(double x, double* values) const;
   // The same for a width known at compile time (W == width()), which lets
   // the compiler unroll and vectorize the taps.

@@ -26,8 +26,9 @@ __device__ inline void Phasor(uint64_t phase, double* c, double* s) {
 }
 
 // partial[chunk * nk + q] = sum over the chunk's points of exp(-2 pi i v_q.s).
-__global__ void SpectrumKernel(const int2* __restrict__ k, int nk, const ulonglong2* __restrict__ pts,
-                               int n, double2* __restrict__ partial) {
+__global__ void SpectrumKernel(const int2* __restrict__ k, int nk,
+                               const ulonglong2* __restrict__ pts, int n,
+                               double2* __restrict__ partial) {
   __shared__ ulonglong2 tile[kThreads];
   const int q = blockIdx.x * blockDim.x + threadIdx.x;
   const int chunk = blockIdx.y;

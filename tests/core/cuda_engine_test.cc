@@ -21,7 +21,7 @@ namespace {
 // The CUDA engine, or the reason the test cannot run here.
 std::unique_ptr<SpectralEngine> CudaOrReason(std::string* reason) {
 #ifndef ALIGNSET_HAVE_CUDA
-  *reason = "the CUDA engine is not built in this binary (no nvcc at configure time)";
+  *reason = "the CUDA engine is not built in this binary (ALIGNSET_CUDA=OFF or no nvcc found)";
   return nullptr;
 #else
   auto engine = MakeSpectralEngine(EngineKind::kCuda, 2);
@@ -75,7 +75,8 @@ TEST(CudaEngineTest, MatchesDirect) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (uint32_t n : {16u, 300u, 4096u}) {
-    for (const std::vector<double>& dirs : std::vector<std::vector<double>>{{30.0}, {115.0, 160.0}}) {
+    const std::vector<std::vector<double>> direction_sets = {{30.0}, {115.0, 160.0}};
+    for (const std::vector<double>& dirs : direction_sets) {
       const std::vector<Frequency> k =
           BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections(dirs));
       PointSet points = OwenScrambledSobol(n, 3);

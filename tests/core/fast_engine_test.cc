@@ -111,17 +111,18 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(FastEngineTest, MatchesDirectOnAnOptimizedSet) {
   // Inside K the spectrum of an optimized set is small, so the fast
-  // engine's absolute error is measured against much smaller values.
+  // engine's absolute error is measured against much smaller values (and
+  // the gradient is a small sum of large terms).
   OptimizationProblem problem;
   problem.n = 256;
   problem.directions = {30.0};
   problem.seed = 5;
   OptimizerOptions options;
-  options.max_iterations = 300;
+  options.max_iterations = 600;
   DirectEngine engine(2);
   auto result = Optimize(problem, options, engine);
   ASSERT_TRUE(result.ok()) << result.status().ToString();
-  ASSERT_LT(result->final_loss.spectrum, 0.5 * result->initial.spectrum);
+  ASSERT_LT(result->final_loss.spectrum, 0.01 * result->initial.spectrum);
 
   const std::vector<Frequency> k =
       BuildFrequencySet(DefaultFrequencyParams(problem.n), AnisotropyDirections({30.0}));
