@@ -27,6 +27,12 @@ class SlicedWasserstein {
   // Returns the loss; if `gradient` is not null it is resized to N and set to
   // d L_SW / d s_j (sorting is piecewise constant, so this is exact almost
   // everywhere).
+  //
+  // The sort starts from the order of the previous call: an optimizer moves
+  // points a little per step, so that order is nearly sorted and an insertion
+  // sort finishes in about N steps (falling back to a full sort when it is
+  // not). The result is the same either way: ties are broken by index. The
+  // cached order makes concurrent calls on one object unsafe.
   double Evaluate(const PointSet& points, std::vector<Point2>* gradient) const;
 
   uint32_t n() const { return n_; }
@@ -36,6 +42,7 @@ class SlicedWasserstein {
   uint32_t n_;
   std::vector<double> directions_;
   std::vector<std::vector<double>> targets_;
+  mutable std::vector<std::vector<uint32_t>> orders_;
 };
 
 }  // namespace alignset

@@ -68,6 +68,33 @@ TEST(SlicedWasserstein, InverseCdfIsMonotoneAndSymmetric) {
   }
 }
 
+TEST(SlicedWasserstein, WarmOrderGivesExactlyTheFreshResult) {
+  // The cached order from a previous call must not change the result: small
+  // moves (the insertion-sort path), wraps across the edge, ties, and a
+  // complete reshuffle (the fallback path) all agree bit for bit.
+  const uint32_t n = 2000;
+  PointSet a;
+  for (uint32_t i = 0; i < n; ++i) a.push_back({((i * 7919) % n + 0.5) / n, ((i * 104729) % n + 0.5) / n});
+  const std::vector<double> dirs = {0.0, 90.0, 30.0};
+  const SlicedWasserstein warm(n, dirs);
+  std::vector<Point2> g_warm, g_fresh;
+  warm.Evaluate(a, &g_warm);
+  PointSet small = a, shuffled = a;
+  for (uint32_t i = 0; i < n; ++i) {
+    small[i].x = Wrap01(small[i].x + 1e-4 * ((i % 7) - 3.0));
+    shuffled[i] = a[(i * 31) % n];
+  }
+  small[5].x = 0.99999;  // ties and a wrap
+  small[6].x = 0.99999;
+  small[7].x = Wrap01(a[7].x + 0.5);
+  for (const PointSet* p : {&small, &shuffled, &a}) {
+    const double lw = warm.Evaluate(*p, &g_warm);
+    const double lf = SlicedWasserstein(n, dirs).Evaluate(*p, &g_fresh);
+    EXPECT_EQ(lw, lf);
+    EXPECT_EQ(g_warm, g_fresh);
+  }
+}
+
 TEST(SlicedWasserstein, PerfectStratificationHasZeroAxisLoss) {
   // N points on the diagonal of an N x N grid: each axis projection is exactly
   // the target quantiles.
