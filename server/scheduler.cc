@@ -126,8 +126,19 @@ storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs) c
 }
 
 StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
-  if (lru_.Get(KeyString(key))) return true;
-  return cache_->Contains(key);
+  const std::string name = KeyString(key);
+  if (lru_.Get(name)) return true;
+  // A full read, not Contains(): the checksum is verified, so a precompute
+  // re-run recomputes a corrupt row instead of counting it as cached.
+  StatusOr<storage::SetRecord> stored = cache_->Get(key);
+  if (stored.ok()) return true;
+  // A corrupt row is not stored; the Acquire() that follows reads it again,
+  // and reports and counts it there (once).
+  if (stored.status().code() == Status::Code::kNotFound ||
+      stored.status().code() == Status::Code::kDataLoss) {
+    return false;
+  }
+  return stored.status();
 }
 
 StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key, Priority priority) {

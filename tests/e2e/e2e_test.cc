@@ -320,6 +320,33 @@ TEST_F(E2eTest, FlippedByteInAStoredBlobIsDetectedAndTheSetRecomputed) {
   EXPECT_TRUE(verify->corrupt.empty());  // the row was replaced
 }
 
+TEST_F(E2eTest, PrecomputeRerunRecomputesACorruptRowInsteadOfCountingItCached) {
+  const auto flags = With(kFast, {"--max-iterations", "100"});
+  StartServer(flags);
+  cli::PrecomputeSpec spec;
+  spec.n = {64};
+  spec.space = 1;
+  auto first = Client()->Precompute(spec, nullptr);
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  EXPECT_EQ(first->done, 46u);
+  server_->Stop(SIGTERM);
+  ASSERT_EQ(FlipBlobBytes(server_->db_path()), 46);  // every row corrupt
+
+  StartServer(flags);
+  auto second = Client()->Precompute(spec, nullptr);
+  ASSERT_TRUE(second.ok()) << second.status().message();
+  EXPECT_EQ(second->cached_already, 0u);
+  EXPECT_EQ(second->done, 46u);
+  EXPECT_EQ(Metrics().corrupt_rows, 46u);
+  server_->Stop(SIGTERM);
+  auto cache = storage::SetCache::Open(server_->db_path());
+  ASSERT_TRUE(cache.ok());
+  auto verify = (*cache)->Verify();
+  ASSERT_TRUE(verify.ok());
+  EXPECT_EQ(verify->checked, 46);
+  EXPECT_TRUE(verify->corrupt.empty());
+}
+
 TEST_F(E2eTest, WrongOrMissingTokenIsRefusedWhenAuthenticationIsOn) {
   const std::string token_file = dir_.path() + "/token";
   std::ofstream(token_file) << "s3cret-token\n";
