@@ -2,6 +2,8 @@
 // built and a CUDA device is present; skips (with the reason) elsewhere.
 #include <gtest/gtest.h>
 
+#include "tests/core/relative_error.h"
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -33,25 +35,7 @@ std::unique_ptr<SpectralEngine> CudaOrReason(std::string* reason) {
 #endif
 }
 
-double RelativeError(const std::vector<std::complex<double>>& a,
-                     const std::vector<std::complex<double>>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < b.size(); ++i) {
-    diff += std::norm(a[i] - b[i]);
-    norm += std::norm(b[i]);
-  }
-  return std::sqrt(diff / norm);
-}
-
-double RelativeError(const std::vector<Point2>& a, const std::vector<Point2>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < b.size(); ++i) {
-    const double dx = a[i].x - b[i].x, dy = a[i].y - b[i].y;
-    diff += dx * dx + dy * dy;
-    norm += b[i].x * b[i].x + b[i].y * b[i].y;
-  }
-  return std::sqrt(diff / norm);
-}
+using test_support::RelativeError;
 
 TEST(CudaEngineTest, UnavailableWithAReasonWhenNoDevice) {
   std::string reason;

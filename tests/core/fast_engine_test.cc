@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/core/relative_error.h"
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -15,26 +17,7 @@
 namespace alignset {
 namespace {
 
-// ||a - b|| / ||b|| over complex vectors.
-double RelativeError(const std::vector<std::complex<double>>& a,
-                     const std::vector<std::complex<double>>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < b.size(); ++i) {
-    diff += std::norm(a[i] - b[i]);
-    norm += std::norm(b[i]);
-  }
-  return std::sqrt(diff / norm);
-}
-
-double RelativeError(const std::vector<Point2>& a, const std::vector<Point2>& b) {
-  double diff = 0.0, norm = 0.0;
-  for (size_t i = 0; i < b.size(); ++i) {
-    const double dx = a[i].x - b[i].x, dy = a[i].y - b[i].y;
-    diff += dx * dx + dy * dy;
-    norm += b[i].x * b[i].x + b[i].y * b[i].y;
-  }
-  return std::sqrt(diff / norm);
-}
+using test_support::RelativeError;
 
 PointSet WhiteNoise(size_t n, uint32_t seed) {
   std::mt19937_64 rng(seed);
