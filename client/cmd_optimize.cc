@@ -22,7 +22,7 @@ int Fail(const Status& s) {
 int RunOptimize(int argc, char** argv) {
   auto args = Args::Parse(argc, argv,
                           {"n", "dir", "seed", "max-iterations", "engine", "threads", "out",
-                           "learning-rate", "length", "width", "radius", "sw-weight", "anneal"});
+                           "learning-rate", "length", "width", "radius", "sw-weight", "anneal", "revert-divisor"});
   if (!args.ok()) return Fail(args.status());
   if (!args->positionals().empty()) {
     return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
@@ -49,6 +49,9 @@ int RunOptimize(int argc, char** argv) {
   auto sw_weight = args->Double("sw-weight", options.sw_weight);
   if (!sw_weight.ok()) return Fail(sw_weight.status());
   options.sw_weight = *sw_weight;
+  auto divisor = args->Double("revert-divisor", options.revert_divisor);
+  if (!divisor.ok()) return Fail(divisor.status());
+  options.revert_divisor = *divisor;
   auto anneal = args->Double("anneal", options.anneal_ratio);
   if (!anneal.ok()) return Fail(anneal.status());
   options.anneal_ratio = *anneal;

@@ -14,7 +14,7 @@ void PrintUsage() {
                "  optimize  --n N --dir DEG [--dir DEG] [--seed S] [--max-iterations K]\n"
                "            [--engine auto|direct|fast|cuda] [--threads T] [--learning-rate LR]\n"
                "            [--length L] [--width W] [--radius R] [--sw-weight C] [--anneal R]\n"
-               "            --out FILE\n"
+               "            [--revert-divisor D] --out FILE\n"
                "            optimize an aligned set (DEG: spectral direction = edge normal)\n"
                "  evaluate  FILE --normal DEG [--edges E] [--shifts K] [--seed S]\n"
                "            CP-rotated variance on parallel step edges and strip periodograms,\n"
