@@ -37,8 +37,11 @@ Figures Measure(const std::vector<PointSet>& sets, double normal, int edges, int
     const VarianceEstimate v = StepEdgeVariance(s, normal, edges, shifts, seed);
     out.variance += v.variance / sets.size();
     out.std_error += v.std_error / sets.size();
-    for (size_t i = 0; i < strips.size(); ++i) {
-      engine->SetFrequencies(StripFrequencies(params, strips[i]));
+  }
+  // One frequency set per strip, shared by every set.
+  for (size_t i = 0; i < strips.size(); ++i) {
+    engine->SetFrequencies(StripFrequencies(params, strips[i]));
+    for (const PointSet& s : sets) {
       SpectrumEvaluation e;
       engine->Evaluate(s, false, &e);
       out.strip_means[i] += e.loss / sets.size();
