@@ -1,41 +1,22 @@
 // The command line as a user meets it: the real binary, real files.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "client/point_file.h"
+#include "tests/client/cli_runner.h"
 
 namespace {
 
-struct CliRun {
-  int exit_code;
-  std::string output;
-};
-
-CliRun RunCli(const std::string& args) {
-  const std::string cmd = std::string(ALIGNSET_CLI_PATH) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[512];
-  while (p && std::fgets(buf, sizeof(buf), p)) out += buf;
-  const int status = p ? pclose(p) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using alignset::test_support::CliRun;
+using alignset::test_support::RunCli;
 
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("alignset_cli_test_" + name)).string();
+  return alignset::test_support::CliTempPath(name);
 }
 
-int Lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
+int Lines(const std::string& s) { return alignset::test_support::CountLines(s); }
 
 TEST(Cli, BadInputGetsOneLineErrorAndNonZeroExit) {
   const std::string out = TempPath("bad.txt");
@@ -54,28 +35,30 @@ TEST(Cli, BadInputGetsOneLineErrorAndNonZeroExit) {
   for (const char* c : cases) {
     const CliRun r = RunCli(std::string(c) + out);
     EXPECT_NE(r.exit_code, 0) << c;
-    EXPECT_EQ(Lines(r.output), 1) << c << " printed: " << r.output;
-    EXPECT_NE(r.output.find("alignset"), std::string::npos) << r.output;
+    EXPECT_EQ(Lines(r.err), 1) << c << " printed: " << r.err;
+    EXPECT_EQ(r.out, "") << c;
+    EXPECT_NE(r.err.find("alignset"), std::string::npos) << r.err;
   }
   const CliRun unwritable = RunCli("optimize --n 64 --dir 30 --out /nonexistent-dir/set.txt");
   EXPECT_NE(unwritable.exit_code, 0);
-  EXPECT_EQ(Lines(unwritable.output), 1) << unwritable.output;
-  EXPECT_NE(unwritable.output.find("cannot write"), std::string::npos);
+  EXPECT_EQ(Lines(unwritable.err), 1) << unwritable.err;
+  EXPECT_EQ(unwritable.out, "");
+  EXPECT_NE(unwritable.err.find("cannot write"), std::string::npos);
   EXPECT_NE(RunCli("frobnicate").exit_code, 0);
 }
 
 TEST(Cli, OptimizeWritesTheSetAndEvaluateReadsIt) {
   const std::string out = TempPath("set.txt");
   const CliRun r = RunCli("optimize --n 64 --dir 30 --max-iterations 50 --out " + out);
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("spectrum loss"), std::string::npos);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("spectrum loss"), std::string::npos);
   auto pts = alignset::cli::ReadPointFile(out);
   ASSERT_TRUE(pts.ok()) << pts.status().ToString();
   EXPECT_EQ(pts->size(), 64u);
   const CliRun e = RunCli("evaluate " + out + " --normal 30 --shifts 1024");
-  ASSERT_EQ(e.exit_code, 0) << e.output;
-  EXPECT_NE(e.output.find("variance ratio"), std::string::npos);
-  EXPECT_NE(e.output.find("mean periodogram 30 deg"), std::string::npos);
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("variance ratio"), std::string::npos);
+  EXPECT_NE(e.out.find("mean periodogram 30 deg"), std::string::npos);
 }
 
 TEST(PointFile, TextAndNpyRoundTripBitExact) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "client/point_file.h"
+#include "tests/client/cli_runner.h"
 #include "core/canonical.h"
 #include "core/samplers.h"
 #include "core/shear.h"
@@ -18,30 +19,13 @@
 namespace alignset::cli {
 namespace {
 
-struct CliRun {
-  int exit_code;
-  std::string err;
-};
+using test_support::CliRun;
 
-std::string TempPath(const std::string& name) {
-  return ::testing::TempDir() + "/alignset_sample_" + std::to_string(getpid()) + "_" + name;
-}
+std::string TempPath(const std::string& name) { return test_support::CliTempPath(name); }
 
-CliRun Cli(const std::string& args) {
-  const std::string err = TempPath("stderr.txt");
-  const std::string cmd = std::string(ALIGNSET_CLI_PATH) + " " + args + " >/dev/null 2>" + err;
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(err);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+CliRun Cli(const std::string& args) { return test_support::RunCli(args); }
 
-int Lines(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
+int Lines(const std::string& s) { return test_support::CountLines(s); }
 
 TEST(SampleCli, WritesTheRegistrysSetAndShears) {
   const std::string out = TempPath("p.txt");
