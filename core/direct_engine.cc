@@ -140,7 +140,10 @@ void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, Spectrum
   out->gradient.assign(n, {0.0, 0.0});
   if (nk == 0) return;
 
-  // Pass 2 (type 2): grad_j = scale * sum_v v Im(conj(F_v) e_j(v)).
+  // Pass 2 (type 2): grad_j = scale * sum_v v Im(conj(F_v) e_j(v)). The block
+  // tables are rebuilt rather than kept from pass 1: keeping them for every
+  // block would take N * (a_count + b_count) * 16 bytes (2 GB at N = 65536),
+  // and building them costs far less than the N * |K| products.
   const double scale = 4.0 * kPi / (dn * static_cast<double>(nk));
   pool_.ParallelFor(blocks, [&](size_t begin, size_t end, int) {
     BlockTables t;
