@@ -34,20 +34,28 @@ void EvaluateTotal(const PointSet& x, SpectralEngine& engine, const SlicedWasser
   }
 }
 
-void AdamStep(AdamState* s, const OptimizerOptions& o, double lr) {
-  ++s->t;
-  const double c1 = 1.0 - std::pow(o.beta1, s->t);
-  const double c2 = 1.0 - std::pow(o.beta2, s->t);
-  auto update = [&](double g, double* m, double* v, double* x) {
-    *m = o.beta1 * *m + (1.0 - o.beta1) * g;
-    *v = o.beta2 * *v + (1.0 - o.beta2) * g * g;
+// One Adam step from `from` (its gradient included) into `to`; `from` is left
+// as it was, so a rejected step costs nothing to undo.
+void AdamStep(const AdamState& from, const OptimizerOptions& o, double lr, AdamState* to) {
+  const size_t n = from.x.size();
+  to->x.resize(n);
+  to->m.resize(n);
+  to->v.resize(n);
+  to->t = from.t + 1;
+  const double c1 = 1.0 - std::pow(o.beta1, to->t);
+  const double c2 = 1.0 - std::pow(o.beta2, to->t);
+  auto update = [&](double g, double m0, double v0, double x0, double* m, double* v, double* x) {
+    *m = o.beta1 * m0 + (1.0 - o.beta1) * g;
+    *v = o.beta2 * v0 + (1.0 - o.beta2) * g * g;
     const double mhat = *m / c1;
     const double vhat = *v / c2;
-    *x = Wrap01(*x - lr * mhat / (std::sqrt(vhat) + o.epsilon));
+    *x = Wrap01(x0 - lr * mhat / (std::sqrt(vhat) + o.epsilon));
   };
-  for (size_t j = 0; j < s->x.size(); ++j) {
-    update(s->grad[j].x, &s->m[j].x, &s->v[j].x, &s->x[j].x);
-    update(s->grad[j].y, &s->m[j].y, &s->v[j].y, &s->x[j].y);
+  for (size_t j = 0; j < n; ++j) {
+    update(from.grad[j].x, from.m[j].x, from.v[j].x, from.x[j].x, &to->m[j].x, &to->v[j].x,
+           &to->x[j].x);
+    update(from.grad[j].y, from.m[j].y, from.v[j].y, from.x[j].y, &to->m[j].y, &to->v[j].y,
+           &to->x[j].y);
   }
 }
 
@@ -140,18 +148,21 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
   const double sw_weight = EffectiveSwWeight(options, problem.n);
 
-  AdamState cur;
-  cur.x = OwenScrambledSobol(problem.n, problem.seed);
-  cur.m.assign(problem.n, {0.0, 0.0});
-  cur.v.assign(problem.n, {0.0, 0.0});
+  // `accepted` is the state after the last accepted step; each step is tried
+  // in `trial`, and the two are swapped when it is accepted (no copies of
+  // the O(N) state per iteration).
+  AdamState accepted;
+  accepted.x = OwenScrambledSobol(problem.n, problem.seed);
+  accepted.m.assign(problem.n, {0.0, 0.0});
+  accepted.v.assign(problem.n, {0.0, 0.0});
   SpectrumEvaluation scratch;
   std::vector<Point2> sw_grad;
-  EvaluateTotal(cur.x, engine, sw, sw_weight, &scratch, &sw_grad, &cur);
-  result.initial = cur.loss;
+  EvaluateTotal(accepted.x, engine, sw, sw_weight, &scratch, &sw_grad, &accepted);
+  result.initial = accepted.loss;
 
-  AdamState accepted = cur;
-  PointSet best = cur.x;
-  LossTerms best_loss = cur.loss;
+  AdamState trial;
+  PointSet best = accepted.x;
+  LossTerms best_loss = accepted.loss;
   double stall_reference = best_loss.total;
   int since_improvement = 0;
   StopReason reason = StopReason::kMaxIterations;
@@ -176,16 +187,15 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   while (it < options.max_iterations) {
     ++it;
     lr *= anneal_step;
-    AdamStep(&cur, options, lr);
-    EvaluateTotal(cur.x, engine, sw, sw_weight, &scratch, &sw_grad, &cur);
+    AdamStep(accepted, options, lr, &trial);
+    EvaluateTotal(trial.x, engine, sw, sw_weight, &scratch, &sw_grad, &trial);
 
     const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
-    const double now = watch_total ? cur.loss.total : cur.loss.spectrum;
+    const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
     const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
     const bool diverged =
-        !std::isfinite(cur.loss.total) || now > (1.0 + options.divergence_threshold) * before;
+        !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
     if (diverged) {
-      cur = accepted;
       lr /= options.revert_divisor;
       ++result.reverts;
       if (lr < options.min_learning_rate) {
@@ -193,10 +203,10 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
         break;
       }
     } else {
-      accepted = cur;
-      if (cur.loss.total < best_loss.total) {
-        best_loss = cur.loss;
-        best = cur.x;
+      std::swap(accepted, trial);
+      if (accepted.loss.total < best_loss.total) {
+        best_loss = accepted.loss;
+        best = accepted.x;
       }
       if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
         stall_reference = best_loss.total;
