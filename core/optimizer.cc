@@ -68,7 +68,17 @@ double DefaultLearningRate(const std::vector<Frequency>& k) {
 }
 
 double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n) {
-  return options.sw_weight > 0.0 ? options.sw_weight : static_cast<double>(n);
+  return options.sw_weight > 0.0 ? options.sw_weight : 4.0 * static_cast<double>(n);
+}
+
+int DefaultIterationBudget(uint32_t n) {
+  constexpr double kBase = 1000.0;
+  constexpr double kBaseN = 4096.0;
+  return static_cast<int>(std::lround(kBase * std::sqrt(std::max(1.0, n / kBaseN))));
+}
+
+int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n) {
+  return options.max_iterations > 0 ? options.max_iterations : DefaultIterationBudget(n);
 }
 
 std::string StopReasonName(StopReason r) {
@@ -147,6 +157,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
 
   double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
   const double sw_weight = EffectiveSwWeight(options, problem.n);
+  const int max_iterations = EffectiveMaxIterations(options, problem.n);
 
   // `accepted` is the state after the last accepted step; each step is tried
   // in `trial`, and the two are swapped when it is accepted (no copies of
@@ -171,7 +182,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     if (!progress) return true;
     ProgressInfo info;
     info.iteration = iteration;
-    info.max_iterations = options.max_iterations;
+    info.max_iterations = max_iterations;
     info.loss = accepted.loss.total;
     info.spectrum_loss = accepted.loss.spectrum;
     info.sw_loss = accepted.loss.sw;
@@ -181,10 +192,9 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     return progress(info);
   };
 
-  const double anneal_step =
-      options.max_iterations > 0 ? std::pow(options.anneal_ratio, 1.0 / options.max_iterations) : 1.0;
+  const double anneal_step = std::pow(options.anneal_ratio, 1.0 / max_iterations);
   int it = 0;
-  while (it < options.max_iterations) {
+  while (it < max_iterations) {
     ++it;
     lr *= anneal_step;
     AdamStep(accepted, options, lr, &trial);

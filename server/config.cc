@@ -62,8 +62,9 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::threads_per_worker, "threads-per-worker", 0, 1024)},
       {"max-n", "N         largest point count served (default 65536)",
        IntFlag(&ServerConfig::max_n, "max-n", kMinPoints, kMaxPoints)},
-      {"max-iterations", "K  optimizer iterations per set (default 3000)",
-       IntFlag(&ServerConfig::max_iterations, "max-iterations", 1, 100000000)},
+      {"max-iterations",
+       "K  optimizer iterations per set (default 0: 1000 up to N = 4096, then growing like sqrt N)",
+       IntFlag(&ServerConfig::max_iterations, "max-iterations", 0, 100000000)},
       {"engine", "E        spectral engine auto|direct|fast|cuda (default auto)",
        [](ServerConfig& c, const std::string& v) {
          auto k = ParseEngineKind(v);

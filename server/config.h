@@ -20,7 +20,7 @@ struct ServerConfig {
   int workers = 1;
   int threads_per_worker = 0;  // <= 0: all cores
   uint32_t max_n = 65536;
-  int max_iterations = 3000;
+  int max_iterations = 0;  // 0: DefaultIterationBudget(N)
   EngineKind engine = EngineKind::kAuto;
   uint64_t seed = 1;
   // Optimizations waiting for a worker; a request needing one more gets

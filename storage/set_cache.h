@@ -15,7 +15,7 @@
 namespace alignset::storage {
 
 // Bumped whenever the optimizer's output for the same parameters changes.
-inline constexpr int kAlgorithmVersion = 1;
+inline constexpr int kAlgorithmVersion = 2;
 
 // Identifies how a set was made: every optimization parameter and the
 // algorithm version, hashed into a short stable hex id. A changed parameter

@@ -52,6 +52,36 @@ TEST(Optimizer, ReducesBothLossesAndStaysInTheTorus) {
   EXPECT_NEAR(again.total, r->final_loss.total, 1e-12 * std::max(1.0, again.total));
 }
 
+TEST(Optimizer, DefaultBudgetIsReportedAndKept) {
+  EXPECT_EQ(DefaultIterationBudget(256), 1000);
+  EXPECT_EQ(DefaultIterationBudget(4096), 1000);
+  EXPECT_EQ(DefaultIterationBudget(16384), 2000);
+  EXPECT_EQ(DefaultIterationBudget(65536), 4000);
+  OptimizerOptions o;  // max_iterations 0: the default budget
+  EXPECT_EQ(EffectiveMaxIterations(o, 64), 1000);
+  EXPECT_DOUBLE_EQ(EffectiveSwWeight(o, 64), 4.0 * 64);
+  o.max_iterations = 7;
+  EXPECT_EQ(EffectiveMaxIterations(o, 64), 7);
+
+  // Without the plateau rule's early stop the run uses exactly the default
+  // budget, and the progress reports it as the total.
+  OptimizerOptions plain;
+  plain.stall_iterations = 1 << 30;
+  plain.progress_every = 100;
+  DirectEngine engine(2);
+  int reported_total = -1, last_iteration = -1;
+  auto r = Optimize(Problem(32, {30}), plain, engine, [&](const ProgressInfo& p) {
+    reported_total = p.max_iterations;
+    last_iteration = p.iteration;
+    return true;
+  });
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(reported_total, DefaultIterationBudget(32));
+  EXPECT_EQ(r->iterations, DefaultIterationBudget(32));
+  EXPECT_EQ(last_iteration, r->iterations);
+  EXPECT_EQ(r->stop_reason, StopReason::kMaxIterations);
+}
+
 TEST(Optimizer, DeterministicForASeedAcrossThreadCounts) {
   OptimizerOptions o;
   o.max_iterations = 60;

@@ -57,7 +57,7 @@ TEST(Config, FlagsOverrideEnvironmentOverridesDefaults) {
   EXPECT_EQ(c->max_n, 1024u);
   EXPECT_EQ(c->listen, "0.0.0.0:1");
   EXPECT_EQ(c->engine, EngineKind::kDirect);
-  EXPECT_EQ(c->max_iterations, 3000);
+  EXPECT_EQ(c->max_iterations, 0);
 }
 
 TEST(Config, RefusesBadValues) {
