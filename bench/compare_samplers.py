@@ -3,7 +3,7 @@
 
 Drives the `alignset` binary:
   alignset sample KIND --n N --seed S [--shear DEG] --out FILE
-  alignset optimize --n N --dir PHI --max-iterations K --engine E --out FILE
+  alignset optimize --n N --dir PHI [--max-iterations K] --engine E --out FILE
   alignset align FILE --canonical PHI --dir DEG --out FILE
   alignset variance FILE... --normal DEG... --shifts K
 
@@ -18,12 +18,12 @@ slopes, checks that the aligned optimized sets beat sheared pmj02bn and
 Owen-Sobol at every N >= 1024, and writes a log-log PNG.
 
 Usage:
-  /usr/bin/python3 bench/compare_samplers.py --n-max 4096 --iterations 1500
+  /usr/bin/python3 bench/compare_samplers.py --n-max 4096 [--iterations 1500]
 The optimization dominates the cost (direct engine: ~3.5 ms/iteration at
 N = 1024, ~55 ms at 4096, ~16x per 4x N); use --engine fast once it exists,
 or --opt-n-max to stop optimizing above some N. Optimized canonical sets are
-kept in --workdir by (phi, N, iterations, engine) and reused by later runs;
-delete them to re-optimize.
+kept in --workdir by (phi, N, iterations, engine, optimizer defaults version)
+and reused by later runs; delete them to re-optimize.
 """
 
 import argparse
@@ -91,7 +91,8 @@ def main():
     ap.add_argument("--normals", default="20,70,110,160", help="edge normals in degrees (spectral directions)")
     ap.add_argument("--seeds", type=int, default=4, help="seeds per randomized sampler")
     ap.add_argument("--shifts", type=int, default=4096, help="Cranley-Patterson shifts per estimate")
-    ap.add_argument("--iterations", type=int, default=1500, help="optimizer iterations per set")
+    ap.add_argument("--iterations", type=int, default=0,
+                    help="optimizer iterations per set (0: the optimizer's default budget)")
     ap.add_argument("--engine", default="direct", help="spectral engine for optimize (direct, fast, cuda, auto)")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--samplers", default="all", help="comma-separated registry names, or 'all'")
@@ -155,10 +156,13 @@ def main():
             canon = {}
             topt = time.time()
             for phi in sorted({canonical_phi(d) for d in normals}):
-                path = os.path.join(args.workdir, "opt_phi%d_%d_it%d_%s.txt" % (phi, n, args.iterations, args.engine))
+                # v2: the optimizer defaults of algorithm version 2 (c = 4N, budget by N).
+                path = os.path.join(args.workdir, "opt_v2_phi%d_%d_it%d_%s.txt" % (phi, n, args.iterations, args.engine))
                 if not os.path.exists(path):
                     cmd = [binary, "optimize", "--n", str(n), "--dir", str(phi), "--seed", "1",
-                           "--max-iterations", str(args.iterations), "--engine", args.engine, "--out", path]
+                           "--engine", args.engine, "--out", path]
+                    if args.iterations:
+                        cmd += ["--max-iterations", str(args.iterations)]
                     if args.threads:
                         cmd += ["--threads", str(args.threads)]
                     run(cmd)
@@ -181,7 +185,8 @@ def main():
           % ", ".join("%g" % d for d in normals))
     print("mean over %d seeds (1 for seedless samplers and the optimized set) and the normals, %d shifts"
           % (args.seeds, args.shifts))
-    print("optimized: %d iterations, engine %s" % (args.iterations, args.engine))
+    print("optimized: %s iterations, engine %s"
+          % (args.iterations or "default (1000 up to N = 4096, then like sqrt N)", args.engine))
     header = "%-22s" % "sampler" + "".join("%12s" % ("N=%d" % n) for n in ns) + "%9s" % "slope"
     print(header)
     print("-" * len(header))
