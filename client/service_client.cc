@@ -150,6 +150,19 @@ StatusOr<PointSet> DecodePoints(const std::string& bytes, uint32_t expected_n) {
   return pts;
 }
 
+constexpr char kRetryServiceConfig[] = R"({
+  "methodConfig": [{
+    "name": [{"service": "alignset.v1.AlignSet"}, {"service": "grpc.health.v1.Health"}],
+    "retryPolicy": {
+      "maxAttempts": 4,
+      "initialBackoff": "0.1s",
+      "maxBackoff": "1s",
+      "backoffMultiplier": 2,
+      "retryableStatusCodes": ["UNAVAILABLE"]
+    }
+  }]
+})";
+
 struct ServiceClient::Impl {
   ConnectOptions options;
   std::shared_ptr<grpc::Channel> channel;
@@ -185,6 +198,12 @@ StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOpt
   args.SetMaxReceiveMessageSize(-1);
   if (!options.tls_server_name.empty()) args.SetSslTargetNameOverride(options.tls_server_name);
   if (options.separate_connection) args.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
+  // A connection attempt can fail transiently (a loaded server's accept
+  // backlog, a connection reset while it starts): retry UNAVAILABLE a few
+  // times with backoff. Every AlignSet call is safe to repeat (a fetch, or a
+  // computation the server de-duplicates), and the bound keeps a server that
+  // is really down a quick, clear error (about 0.7 s).
+  args.SetServiceConfigJSON(kRetryServiceConfig);
   auto impl = std::make_unique<Impl>();
   impl->options = options;
   impl->channel = grpc::CreateCustomChannel(options.address, creds, args);
