@@ -71,14 +71,17 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n) {
   return options.sw_weight > 0.0 ? options.sw_weight : 4.0 * static_cast<double>(n);
 }
 
-int DefaultIterationBudget(uint32_t n) {
+int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {
   constexpr double kBase = 1000.0;
   constexpr double kBaseN = 4096.0;
-  return static_cast<int>(std::lround(kBase * std::sqrt(std::max(1.0, n / kBaseN))));
+  const double per_direction = arbitrary_directions >= 2 ? 1.5 : 1.0;
+  return static_cast<int>(
+      std::lround(kBase * per_direction * std::sqrt(std::max(1.0, n / kBaseN))));
 }
 
-int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n) {
-  return options.max_iterations > 0 ? options.max_iterations : DefaultIterationBudget(n);
+int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n, int arbitrary_directions) {
+  return options.max_iterations > 0 ? options.max_iterations
+                                    : DefaultIterationBudget(n, arbitrary_directions);
 }
 
 std::string StopReasonName(StopReason r) {
@@ -157,7 +160,8 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
 
   double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
   const double sw_weight = EffectiveSwWeight(options, problem.n);
-  const int max_iterations = EffectiveMaxIterations(options, problem.n);
+  const int max_iterations = EffectiveMaxIterations(
+      options, problem.n, static_cast<int>(problem.directions.size()));
 
   // `accepted` is the state after the last accepted step; each step is tried
   // in `trial`, and the two are swapped when it is accepted (no copies of

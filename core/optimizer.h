@@ -85,16 +85,20 @@ struct OptimizerOptions {
 // The weight c of L_SW that `options` selects for N points.
 double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
 
-// The iteration budget alignset uses for N points: 1000 up to N = 4096, then
-// growing like sqrt(N) (2000 at 16384, 4000 at 65536). Measured with the
-// default schedule, that many iterations bring the aligned step-edge
-// variance within a few percent of a fully converged set (README, "Time to
-// quality"); larger sets need more because their lowest frequencies span
-// more point spacings.
-int DefaultIterationBudget(uint32_t n);
+// The iteration budget alignset uses for N points and one or two arbitrary
+// directions: 1000 up to N = 4096, then growing like sqrt(N) (2000 at 16384,
+// 4000 at 65536), and half as much again for two arbitrary directions.
+// Measured with the default schedule, that many iterations bring the aligned
+// step-edge variance within a few percent of a fully converged set (README,
+// "Time to quality"); larger sets need more because their lowest
+// frequencies span more point spacings, and two-direction sets (five strips)
+// were still 6-12% above converged after 1000 iterations at N = 4096 but
+// converged after 1500.
+int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 
-// The budget `options` selects for N points.
-int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n);
+// The budget `options` selects for the problem.
+int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
+                           int arbitrary_directions = 1);
 
 // The first step size, scaled to the highest suppressed frequency: a step of
 // lr moves the phase at frequency |v| by 2 pi |v| lr, so lr ~ 1 / |v|max keeps

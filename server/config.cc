@@ -63,7 +63,8 @@ const std::vector<Flag>& Flags() {
       {"max-n", "N         largest point count served (default 65536)",
        IntFlag(&ServerConfig::max_n, "max-n", kMinPoints, kMaxPoints)},
       {"max-iterations",
-       "K  optimizer iterations per set (default 0: 1000 up to N = 4096, then growing like sqrt N)",
+       "K  optimizer iterations per set (default 0: 1000 up to N = 4096, then growing like sqrt N;\n"
+       "                     x1.5 for two directions)",
        IntFlag(&ServerConfig::max_iterations, "max-iterations", 0, 100000000)},
       {"engine", "E        spectral engine auto|direct|fast|cuda (default auto)",
        [](ServerConfig& c, const std::string& v) {

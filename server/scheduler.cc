@@ -276,7 +276,7 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
   problem.seed = options_.seed;
   metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
   spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),
-               EffectiveMaxIterations(options_.optimizer, key.n));
+               EffectiveMaxIterations(options_.optimizer, key.n, key.dirs.count));
   const auto t0 = Clock::now();
   auto result = Optimize(problem, options_.optimizer, *engine, [&](const ProgressInfo& p) {
     std::lock_guard<std::mutex> lock(mu_);

@@ -130,7 +130,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_length(fp.length);
   p->set_width(fp.width);
   p->set_radius(fp.radius);
-  p->set_max_iterations(EffectiveMaxIterations(opt, key.n));
+  p->set_max_iterations(EffectiveMaxIterations(opt, key.n, key.dirs.count));
   p->set_learning_rate(opt.learning_rate);
   p->set_sw_weight(EffectiveSwWeight(opt, key.n));
   p->set_seed(scheduler_->options().seed);

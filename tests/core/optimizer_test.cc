@@ -57,6 +57,8 @@ TEST(Optimizer, DefaultBudgetIsReportedAndKept) {
   EXPECT_EQ(DefaultIterationBudget(4096), 1000);
   EXPECT_EQ(DefaultIterationBudget(16384), 2000);
   EXPECT_EQ(DefaultIterationBudget(65536), 4000);
+  EXPECT_EQ(DefaultIterationBudget(4096, 2), 1500);
+  EXPECT_EQ(DefaultIterationBudget(65536, 2), 6000);
   OptimizerOptions o;  // max_iterations 0: the default budget
   EXPECT_EQ(EffectiveMaxIterations(o, 64), 1000);
   EXPECT_DOUBLE_EQ(EffectiveSwWeight(o, 64), 4.0 * 64);
