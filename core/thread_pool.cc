@@ -30,6 +30,9 @@ bool ThreadPool::SpinUntil(Pred pred) {
       CpuRelax();
     }
     if (std::chrono::steady_clock::now() >= deadline) return pred();
+    // Lets a descheduled thread we wait for run on this core when the
+    // machine is oversubscribed; costs a syscall per burst otherwise.
+    std::this_thread::yield();
   }
 }
 

@@ -1,6 +1,7 @@
 #include "server/config.h"
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -58,7 +59,7 @@ const std::vector<Flag>& Flags() {
        StringFlag(&ServerConfig::db_path)},
       {"workers", "K       concurrent optimizations (default 1)",
        IntFlag(&ServerConfig::workers, "workers", 1, 256)},
-      {"threads-per-worker", "T  CPU threads per optimization (default 0: all cores)",
+      {"threads-per-worker", "T  CPU threads per optimization (default 0: the cores divided among the workers)",
        IntFlag(&ServerConfig::threads_per_worker, "threads-per-worker", 0, 1024)},
       {"max-n", "N         largest point count served (default 65536)",
        IntFlag(&ServerConfig::max_n, "max-n", kMinPoints, kMaxPoints)},
@@ -159,6 +160,12 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
   }
   if (config.listen.empty()) return Status::InvalidArgument("--listen is empty");
   return config;
+}
+
+int ThreadsPerWorker(int workers, int configured, unsigned cores) {
+  if (configured > 0) return configured;
+  const int c = std::max(1, static_cast<int>(cores));
+  return std::max(1, c / std::max(1, workers));
 }
 
 }  // namespace alignset::server

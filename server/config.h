@@ -18,7 +18,7 @@ struct ServerConfig {
   std::string listen = kDefaultListenAddress;
   std::string db_path;  // empty: storage::DefaultDatabasePath()
   int workers = 1;
-  int threads_per_worker = 0;  // <= 0: all cores
+  int threads_per_worker = 0;  // <= 0: ThreadsPerWorker shares the cores out
   uint32_t max_n = 65536;
   int max_iterations = 0;  // 0: DefaultIterationBudget(N)
   EngineKind engine = EngineKind::kAuto;
@@ -48,5 +48,12 @@ using EnvLookup = std::function<const char*(const char*)>;
 // NotFound with the usage text as its message.
 StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup& env);
 std::string ServerUsage();
+
+// Threads each optimization worker gets: `configured` when positive, else
+// the cores divided among the workers (at least one), so that concurrent
+// optimizations do not oversubscribe the machine (the engines' thread pools
+// spin briefly between loops, which an oversubscribed core turns into lost
+// time).
+int ThreadsPerWorker(int workers, int configured, unsigned cores);
 
 }  // namespace alignset::server

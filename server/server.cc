@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "server/scheduler.h"
 #include "server/service.h"
@@ -102,7 +103,13 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
 
   Scheduler::Options so;
   so.workers = config.workers;
-  so.threads_per_worker = config.threads_per_worker;
+  so.threads_per_worker = ThreadsPerWorker(config.workers, config.threads_per_worker,
+                                          std::thread::hardware_concurrency());
+  if (config.workers * so.threads_per_worker > static_cast<int>(std::thread::hardware_concurrency())) {
+    spdlog::warn("{} worker(s) x {} thread(s) oversubscribe the {} cores: optimizations will slow "
+                 "each other down",
+                 config.workers, so.threads_per_worker, std::thread::hardware_concurrency());
+  }
   so.engine = config.engine;
   so.max_queue = config.max_queue;
   so.optimizer.max_iterations = config.max_iterations;
@@ -137,7 +144,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
                "max iterations {}{}{}",
                config.listen, impl->port, impl->db_path, config.workers,
-               config.threads_per_worker > 0 ? std::to_string(config.threads_per_worker) : "all",
+               so.threads_per_worker,
                EngineKindName(config.engine), config.max_n, config.max_iterations,
                config.tls_cert.empty() ? "" : ", TLS", token.empty() ? "" : ", bearer token");
   return std::unique_ptr<ServerInstance>(new ServerInstance(std::move(impl)));

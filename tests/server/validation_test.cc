@@ -82,6 +82,15 @@ storage::SetRecord Record(uint32_t n, int phi) {
   return r;
 }
 
+TEST(Config, DefaultThreadsShareTheCoresAmongWorkers) {
+  EXPECT_EQ(ThreadsPerWorker(1, 0, 8), 8);
+  EXPECT_EQ(ThreadsPerWorker(2, 0, 8), 4);
+  EXPECT_EQ(ThreadsPerWorker(3, 0, 8), 2);
+  EXPECT_EQ(ThreadsPerWorker(16, 0, 8), 1);  // never zero
+  EXPECT_EQ(ThreadsPerWorker(2, 0, 0), 1);   // core count unknown
+  EXPECT_EQ(ThreadsPerWorker(2, 5, 8), 5);   // an explicit setting wins
+}
+
 TEST(SetLru, EvictsLeastRecentlyUsedByBytes) {
   const size_t one = CanonicalEntry(Record(64, 0)).ChargedBytes();
   SetLru lru(3 * one);
