@@ -20,7 +20,10 @@ namespace alignset {
 // tenth of an iteration at N = 4096 (futex wake-ups and context switches),
 // so a worker that just finished a loop, and the caller waiting for the
 // workers, first spin for up to kSpinMicroseconds and only then block.
-// Longer gaps (between optimizations, an idle server) still sleep.
+// Longer gaps (between optimizations, an idle server) still sleep. The spin
+// yields between bursts, so that on an oversubscribed machine the thread
+// being waited for can run (two 2-thread optimizations on 2 cores: 4.9 s
+// with a pure spin, 3.1 s with the yield, 3.4 s one after the other).
 class ThreadPool {
  public:
   static constexpr int kSpinMicroseconds = 100;
