@@ -92,8 +92,8 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
 // step-edge variance within a few percent of a fully converged set (README,
 // "Time to quality"); larger sets need more because their lowest
 // frequencies span more point spacings, and two-direction sets (five strips)
-// were still 6-12% above converged after 1000 iterations at N = 4096 but
-// converged after 1500.
+// were still 8-13% above converged after 1000 iterations at N = 4096 and
+// within 3% after 1500 (4 seeds, bench/results/two_directions_budget.txt).
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 
 // The budget `options` selects for the problem.
