@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/number_text.h"
 #include "core/status.h"
 
 namespace alignset::cli {
@@ -32,9 +33,5 @@ class Args {
   std::map<std::string, std::vector<std::string>> values_;
   std::vector<std::string> positionals_;
 };
-
-// Parses a finite real number; rejects "nan", "inf", trailing garbage.
-StatusOr<double> ParseFiniteDouble(const std::string& text, const std::string& what);
-StatusOr<int64_t> ParseInt(const std::string& text, const std::string& what, int64_t lo, int64_t hi);
 
 }  // namespace alignset::cli

@@ -1,12 +1,11 @@
 #include "server/config.h"
 
-#include <cerrno>
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
+#include <cctype>
 #include <map>
 #include <vector>
 
+#include "core/number_text.h"
 #include "core/optimizer.h"
 
 namespace alignset::server {
@@ -18,26 +17,12 @@ struct Flag {
   std::function<Status(ServerConfig&, const std::string&)> apply;
 };
 
-StatusOr<int64_t> ToInt(const std::string& v, const std::string& what, int64_t lo, int64_t hi) {
-  char* end = nullptr;
-  errno = 0;
-  const long long x = std::strtoll(v.c_str(), &end, 10);
-  if (v.empty() || *end != '\0' || errno == ERANGE) {
-    return Status::InvalidArgument(what + ": '" + v + "' is not an integer");
-  }
-  if (x < lo || x > hi) {
-    return Status::InvalidArgument(what + ": " + v + " is out of range [" + std::to_string(lo) +
-                                   ", " + std::to_string(hi) + "]");
-  }
-  return static_cast<int64_t>(x);
-}
-
 template <typename T>
 std::function<Status(ServerConfig&, const std::string&)> IntFlag(T ServerConfig::*field,
                                                                  const char* name, int64_t lo,
                                                                  int64_t hi) {
   return [=](ServerConfig& c, const std::string& v) {
-    auto x = ToInt(v, std::string("--") + name, lo, hi);
+    auto x = ParseInt(v, std::string("--") + name, lo, hi);
     if (!x.ok()) return x.status();
     c.*field = static_cast<T>(*x);
     return Status::Ok();
@@ -93,12 +78,11 @@ const std::vector<Flag>& Flags() {
        StringFlag(&ServerConfig::log_level)},
       {"shutdown-grace", "S  seconds running calls get after SIGTERM (default 5)",
        [](ServerConfig& c, const std::string& v) {
-         char* end = nullptr;
-         const double s = std::strtod(v.c_str(), &end);
-         if (v.empty() || *end != '\0' || !std::isfinite(s) || s < 0 || s > 3600) {
+         auto s = ParseFiniteDouble(v, "--shutdown-grace");
+         if (!s.ok() || *s < 0 || *s > 3600) {
            return Status::InvalidArgument("--shutdown-grace: '" + v + "' is not a number of seconds in [0, 3600]");
          }
-         c.shutdown_grace_seconds = s;
+         c.shutdown_grace_seconds = *s;
          return Status::Ok();
        }},
   };
