@@ -10,10 +10,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset align: %s\n", s.message().c_str());
-  return 2;
-}
+int Fail(const Status& s) { return ReportError("align", s, kExitUsage); }
 
 }  // namespace
 

@@ -18,8 +18,7 @@ using storage::SetCache;
 
 // Exit codes: 0 success, 1 the command ran but found damaged sets, 2 error.
 int Fail(const std::string& sub, const Status& s) {
-  std::fprintf(stderr, "alignset cache %s: %s\n", sub.c_str(), s.message().c_str());
-  return 2;
+  return ReportError("cache " + sub, s, kExitUsage);
 }
 
 void PrintUsage() {
@@ -199,9 +198,9 @@ int RunCache(int argc, char** argv) {
     PrintUsage();
     return 0;
   }
-  std::fprintf(stderr, "alignset cache: unknown subcommand '%s'\n", sub.c_str());
+  ReportError("cache", Status::InvalidArgument("unknown subcommand '" + sub + "'"), kExitUsage);
   PrintUsage();
-  return 2;
+  return kExitUsage;
 }
 
 }  // namespace alignset::cli

@@ -13,10 +13,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset evaluate: %s\n", s.message().c_str());
-  return 2;
-}
+int Fail(const Status& s) { return ReportError("evaluate", s, kExitUsage); }
 
 // Owen-Sobol varies with its scramble; averaging a few scrambles makes the
 // baseline a property of the sampler rather than of one seed.

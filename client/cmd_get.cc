@@ -10,10 +10,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset get: %s\n", s.message().c_str());
-  return 1;
-}
+int Fail(const Status& s) { return ReportError("get", s, kExitService); }
 
 std::string Join(const std::vector<int>& v) {
   std::string s;

@@ -12,10 +12,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset optimize: %s\n", s.message().c_str());
-  return 2;
-}
+int Fail(const Status& s) { return ReportError("optimize", s, kExitUsage); }
 
 }  // namespace
 

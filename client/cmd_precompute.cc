@@ -10,10 +10,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset precompute: %s\n", s.message().c_str());
-  return 1;
-}
+int Fail(const Status& s) { return ReportError("precompute", s, kExitService); }
 
 // "3/8" -> shard 3 of 8 (0-based index).
 Status ParseShard(const std::string& text, PrecomputeSpec* spec) {

@@ -10,10 +10,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset sample: %s\n", s.message().c_str());
-  return 2;
-}
+int Fail(const Status& s) { return ReportError("sample", s, kExitUsage); }
 
 void PrintSamplers() {
   std::printf("usage: alignset sample KIND --n N [--seed S] [--shear DEG] --out FILE\n"

@@ -8,10 +8,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset stats: %s\n", s.message().c_str());
-  return 1;
-}
+int Fail(const Status& s) { return ReportError("stats", s, kExitService); }
 
 }  // namespace
 

@@ -11,10 +11,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) {
-  std::fprintf(stderr, "alignset variance: %s\n", s.message().c_str());
-  return 2;
-}
+int Fail(const Status& s) { return ReportError("variance", s, kExitUsage); }
 
 }  // namespace
 

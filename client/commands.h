@@ -1,6 +1,19 @@
 #pragma once
 
+#include <string>
+
+#include "core/status.h"
+
 namespace alignset::cli {
+
+// Exit statuses: bad input or a failed local step, and a failed call to the
+// service (the server's answer is in the message).
+inline constexpr int kExitUsage = 2;
+inline constexpr int kExitService = 1;
+
+// Prints `s` as the one error line "alignset <command>: <message>" on stderr
+// and returns `exit_code`.
+int ReportError(const std::string& command, const Status& s, int exit_code);
 
 // Each subcommand takes the arguments after its name and returns the process
 // exit status; errors are printed as one line on stderr.
