@@ -15,14 +15,9 @@ using testing::BitEqual;
 using testing::Key1;
 using testing::Key2;
 using testing::MakeRecord;
+using testing::MustOpen;
 using testing::RawDb;
 using testing::TempDir;
-
-std::unique_ptr<SetCache> MustOpen(const std::string& path) {
-  auto c = SetCache::Open(path);
-  EXPECT_TRUE(c.ok()) << c.status().ToString();
-  return c.ok() ? std::move(c).value() : nullptr;
-}
 
 // Writes a shard holding `keys`, each at generation `gen`.
 void WriteShard(const std::string& path, const std::vector<SetKey>& keys, int gen) {

@@ -16,14 +16,9 @@ using testing::BitEqual;
 using testing::Key1;
 using testing::Key2;
 using testing::MakeRecord;
+using testing::MustOpen;
 using testing::RawDb;
 using testing::TempDir;
-
-std::unique_ptr<SetCache> MustOpen(const std::string& path, SetCache::Options o = {}) {
-  auto c = SetCache::Open(path, o);
-  EXPECT_TRUE(c.ok()) << c.status().ToString();
-  return c.ok() ? std::move(c).value() : nullptr;
-}
 
 void ExpectSameRecord(const SetRecord& got, const SetRecord& want) {
   EXPECT_EQ(got.key, want.key);

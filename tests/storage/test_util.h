@@ -1,11 +1,13 @@
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <stdlib.h>
 
 #include <bit>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "core/hash.h"
@@ -92,6 +94,13 @@ inline bool BitEqual(const PointSet& a, const PointSet& b) {
     }
   }
   return true;
+}
+
+// Opens a cache that the test needs (a failure is reported; null then).
+inline std::unique_ptr<SetCache> MustOpen(const std::string& path, SetCache::Options o = {}) {
+  auto c = SetCache::Open(path, o);
+  EXPECT_TRUE(c.ok()) << c.status().ToString();
+  return c.ok() ? std::move(c).value() : nullptr;
 }
 
 // Raw access with the plain SQLite API, as an outside tool (or damage)
