@@ -103,12 +103,12 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
 
   Scheduler::Options so;
   so.workers = config.workers;
-  so.threads_per_worker = ThreadsPerWorker(config.workers, config.threads_per_worker,
-                                          std::thread::hardware_concurrency());
-  if (config.workers * so.threads_per_worker > static_cast<int>(std::thread::hardware_concurrency())) {
+  const unsigned cores = std::thread::hardware_concurrency();
+  so.threads_per_worker = ThreadsPerWorker(config.workers, config.threads_per_worker, cores);
+  if (cores > 0 && config.workers * so.threads_per_worker > static_cast<int>(cores)) {
     spdlog::warn("{} worker(s) x {} thread(s) oversubscribe the {} cores: optimizations will slow "
                  "each other down",
-                 config.workers, so.threads_per_worker, std::thread::hardware_concurrency());
+                 config.workers, so.threads_per_worker, cores);
   }
   so.engine = config.engine;
   so.max_queue = config.max_queue;
