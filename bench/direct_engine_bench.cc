@@ -6,10 +6,10 @@
 //   build/bench/direct_engine_bench --benchmark_filter=EndToEnd
 #include <benchmark/benchmark.h>
 
-#include "core/direct_engine.h"
-#include "core/frequency_set.h"
-#include "core/optimizer.h"
-#include "core/owen_sobol.h"
+#include "core/spectral/direct_engine.h"
+#include "core/spectral/frequency_set.h"
+#include "core/optimize/optimizer.h"
+#include "core/sampling/owen_sobol.h"
 
 namespace alignset {
 namespace {

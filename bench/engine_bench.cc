@@ -14,12 +14,12 @@
 #include <memory>
 #include <string>
 
-#include "core/direct_engine.h"
-#include "core/fast_engine.h"
-#include "core/frequency_set.h"
-#include "core/owen_sobol.h"
+#include "core/spectral/direct_engine.h"
+#include "core/spectral/fast_engine.h"
+#include "core/spectral/frequency_set.h"
+#include "core/sampling/owen_sobol.h"
 #ifdef ALIGNSET_HAVE_CUDA
-#include "core/cuda/cuda_engine.h"
+#include "core/spectral/cuda/cuda_engine.h"
 #endif
 
 namespace alignset {

@@ -26,8 +26,8 @@
 
 #include "client/args.h"
 #include "client/service_client.h"
-#include "core/canonical.h"
-#include "core/owen_sobol.h"
+#include "core/align/canonical.h"
+#include "core/sampling/owen_sobol.h"
 #include "storage/set_cache.h"
 
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/number_text.h"
-#include "core/status.h"
+#include "core/util/number_text.h"
+#include "core/util/status.h"
 
 namespace alignset::cli {
 

@@ -5,7 +5,7 @@
 #include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
-#include "core/canonical.h"
+#include "core/align/canonical.h"
 
 namespace alignset::cli {
 namespace {

@@ -5,10 +5,10 @@
 #include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
-#include "core/direct_engine.h"
-#include "core/frequency_set.h"
-#include "core/owen_sobol.h"
-#include "core/variance.h"
+#include "core/spectral/direct_engine.h"
+#include "core/spectral/frequency_set.h"
+#include "core/sampling/owen_sobol.h"
+#include "core/analysis/variance.h"
 
 namespace alignset::cli {
 namespace {

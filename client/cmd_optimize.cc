@@ -6,8 +6,8 @@
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "client/progress.h"
-#include "core/optimizer.h"
-#include "core/spectral_engine.h"
+#include "core/optimize/optimizer.h"
+#include "core/spectral/spectral_engine.h"
 
 namespace alignset::cli {
 namespace {

@@ -4,8 +4,8 @@
 #include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
-#include "core/samplers.h"
-#include "core/shear.h"
+#include "core/sampling/samplers.h"
+#include "core/sampling/shear.h"
 
 namespace alignset::cli {
 namespace {

@@ -5,8 +5,8 @@
 #include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
-#include "core/step_integrand.h"
-#include "core/variance.h"
+#include "core/analysis/step_integrand.h"
+#include "core/analysis/variance.h"
 
 namespace alignset::cli {
 namespace {

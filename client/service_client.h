@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/point_set.h"
-#include "core/status.h"
+#include "core/util/point_set.h"
+#include "core/util/status.h"
 
 namespace alignset::cli {
 

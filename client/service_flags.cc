@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/optimizer.h"
+#include "core/optimize/optimizer.h"
 
 namespace alignset::cli {
 

@@ -5,7 +5,7 @@
 #include <mutex>
 #include <string>
 
-#include "core/canonical.h"
+#include "core/align/canonical.h"
 #include "storage/set_cache.h"
 
 namespace alignset::server {

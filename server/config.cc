@@ -5,8 +5,8 @@
 #include <map>
 #include <vector>
 
-#include "core/number_text.h"
-#include "core/optimizer.h"
+#include "core/util/number_text.h"
+#include "core/optimize/optimizer.h"
 
 namespace alignset::server {
 namespace {

@@ -4,8 +4,8 @@
 #include <functional>
 #include <string>
 
-#include "core/spectral_engine.h"
-#include "core/status.h"
+#include "core/spectral/spectral_engine.h"
+#include "core/util/status.h"
 
 namespace alignset::server {
 

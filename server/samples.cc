@@ -1,7 +1,7 @@
 #include "server/samples.h"
 
-#include "core/samplers.h"
-#include "core/shear.h"
+#include "core/sampling/samplers.h"
+#include "core/sampling/shear.h"
 
 namespace alignset::server {
 

@@ -13,8 +13,8 @@
 #include <tuple>
 #include <vector>
 
-#include "core/optimizer.h"
-#include "core/spectral_engine.h"
+#include "core/optimize/optimizer.h"
+#include "core/spectral/spectral_engine.h"
 #include "server/canonical_entry.h"
 #include "server/metrics.h"
 #include "server/set_lru.h"

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "core/status.h"
+#include "core/util/status.h"
 #include "server/config.h"
 
 namespace alignset::server {

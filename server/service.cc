@@ -7,7 +7,7 @@
 #include <deque>
 #include <thread>
 
-#include "core/frequency_set.h"
+#include "core/spectral/frequency_set.h"
 #include "server/samples.h"
 #include "server/validation.h"
 

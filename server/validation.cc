@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/optimizer.h"
+#include "core/optimize/optimizer.h"
 
 namespace alignset::server {
 

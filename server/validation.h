@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/canonical.h"
-#include "core/status.h"
+#include "core/align/canonical.h"
+#include "core/util/status.h"
 
 namespace alignset::server {
 

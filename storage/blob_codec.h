@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "core/point_set.h"
-#include "core/status.h"
+#include "core/util/point_set.h"
+#include "core/util/status.h"
 
 namespace alignset::storage {
 

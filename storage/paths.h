@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/status.h"
+#include "core/util/status.h"
 
 namespace alignset::storage {
 

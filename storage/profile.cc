@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cstdio>
 
-#include "core/hash.h"
+#include "core/util/hash.h"
 #include "storage/set_cache.h"
 
 namespace alignset::storage {

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <string>
 
-#include "core/frequency_set.h"
-#include "core/optimizer.h"
+#include "core/spectral/frequency_set.h"
+#include "core/optimize/optimizer.h"
 
 namespace alignset::storage {
 

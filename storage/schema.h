@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/status.h"
+#include "core/util/status.h"
 #include "storage/sqlite_handle.h"
 
 namespace alignset::storage {

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "core/canonical.h"
-#include "core/frequency_set.h"
-#include "core/optimizer.h"
-#include "core/point_set.h"
-#include "core/status.h"
+#include "core/align/canonical.h"
+#include "core/spectral/frequency_set.h"
+#include "core/optimize/optimizer.h"
+#include "core/util/point_set.h"
+#include "core/util/status.h"
 
 namespace alignset::storage {
 

@@ -12,9 +12,9 @@
 
 #include "client/point_file.h"
 #include "tests/client/cli_runner.h"
-#include "core/canonical.h"
-#include "core/samplers.h"
-#include "core/shear.h"
+#include "core/align/canonical.h"
+#include "core/sampling/samplers.h"
+#include "core/sampling/shear.h"
 
 namespace alignset::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <memory>
 #include <mutex>
 
-#include "core/direct_engine.h"
+#include "core/spectral/direct_engine.h"
 
 namespace alignset::server::testing {
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/hash.h"
+#include "core/util/hash.h"
 #include "tests/storage/test_util.h"
 
 namespace alignset::storage {

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "core/hash.h"
+#include "core/util/hash.h"
 #include "storage/set_cache.h"
 #include "tests/storage/test_util.h"
 

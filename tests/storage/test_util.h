@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "core/hash.h"
+#include "core/util/hash.h"
 #include "storage/set_cache.h"
 
 namespace alignset::storage::testing {

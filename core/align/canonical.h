@@ -1,0 +1,116 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/util/point_set.h"
+#include "core/util/status.h"
+
+namespace alignset {
+
+// An element of the symmetry group of the square that keeps the pair of axes
+// {0°, 90°} (the dihedral group of order 8), acting on the torus [0,1)^2.
+// Applied to points in the order: swap (x,y) -> (y,x) first, then invert
+// x -> 1 - x, then invert y -> 1 - y (the inversions are taken mod 1, so 0
+// stays 0).
+//
+// On directions (mod 180°), swap maps θ -> 90° - θ and each inversion maps
+// θ -> 180° - θ; both inversions together are the half turn, which fixes every
+// direction. Canonicalize therefore never sets `invert_y`; it exists so that
+// every element has a representable inverse: swap-then-invert-x is a quarter
+// turn whose inverse is swap-then-invert-y.
+struct AlignOps {
+  bool swap = false;
+  bool invert = false;    // invert x (after the swap)
+  bool invert_y = false;  // invert y (after the swap)
+  friend bool operator==(const AlignOps&, const AlignOps&) = default;
+};
+
+// A canonical key's directions in whole degrees (spectral convention: each is
+// the normal of an integrand edge). One direction (phi in [0, 45]) for a
+// 3-direction set, or an unordered pair (phi1 <= phi2, both in [0, 180)) for
+// a 4-direction set. The point count is not part of it.
+struct CanonicalDirections {
+  int count = 1;  // 1 or 2 arbitrary directions
+  int phi1 = 0;
+  int phi2 = 0;   // == phi1 and unused when count == 1
+  friend bool operator==(const CanonicalDirections&, const CanonicalDirections&) = default;
+};
+
+// How a request maps onto the cache: the canonical directions, the group
+// element that carries the canonical set onto the request, the whole-degree
+// directions actually served (each the nearest whole degree of the request,
+// reduced mod 180, in request order), and the requested directions as given.
+//
+// Invariant: MapDirection(key.phi1, ops) and MapDirection(key.phi2, ops) are
+// served_deg (as a multiset, for two directions; == served_deg[0] for one).
+struct Canonicalization {
+  CanonicalDirections key;
+  AlignOps ops;
+  std::vector<int> served_deg;
+  std::vector<double> requested_deg;
+};
+
+// Any finite real angles (degrees, spectral convention: the edge normal); one
+// or two of them. Each is reduced mod 180 and rounded to the nearest whole
+// degree (ties away from zero; 179.6 -> 180 -> 0). Anything else (no angle,
+// three or more, NaN, infinity) is INVALID_ARGUMENT.
+//
+// One direction (method.md Algorithm 1): served t in [0,45] -> phi = t;
+// (45,90] -> 90 - t, swap; (90,135] -> t - 90, swap + invert; (135,180) ->
+// 180 - t, invert.
+// Two directions: the key is the representative of the request's orbit under
+// the group (on directions: identity, swap, invert, swap + invert) whose
+// sorted pair (phi1, phi2) is lexicographically smallest; ops is the first
+// element in that order (identity, swap, invert, swap + invert) that maps the
+// key onto the request.
+StatusOr<Canonicalization> Canonicalize(const std::vector<double>& directions_deg);
+
+// The canonical key space: 46 keys for one direction, 4141 for two.
+//
+// ORDER CONTRACT (batch precompute and sharding rely on it; never change it):
+// keys are sorted ascending by (phi1, phi2).
+//   count == 1: index i <-> phi = i, for i in [0, 45].
+//   count == 2: index i <-> the i-th orbit representative (phi1 <= phi2, the
+//               lexicographically smallest sorted pair of its orbit) in
+//               ascending (phi1, phi2) order; index 0 is (0, 0), the last
+//               index 4140.
+// CanonicalKeyCount of anything but 1 or 2 is 0; CanonicalKeyAt with an
+// index out of range returns the default key {1, 0, 0}.
+size_t CanonicalKeyCount(int count);
+CanonicalDirections CanonicalKeyAt(int count, size_t index);
+// INVALID_ARGUMENT if `key` is not canonical (wrong count, out of range,
+// phi2 != phi1 for one direction, or not its orbit's representative).
+StatusOr<size_t> CanonicalKeyIndex(const CanonicalDirections& key);
+
+// Applies the group element to points; results stay in [0, 1).
+//
+// Exactness: the map x -> 1 - x cannot be an exact involution on all doubles
+// in [0,1) (below 1/2 there are far more doubles than above), so Align works
+// on each coordinate's 53-bit fixed-point value q = round(x * 2^53) mod 2^53,
+// inverting as q -> (2^53 - q) mod 2^53, and returns q * 2^-53 exactly.
+// Coordinates already on that grid (every coordinate >= 1/2, every multiple
+// of 2^-53 such as Owen-Sobol's 2^-32 digits or Pcg32::NextDouble) pass
+// unchanged through the identity; others (only possible below 1/2) move by
+// at most 2^-54, far below anything a spectrum up to |v| ~ 10^3 can see. On the grid the group acts exactly: Align(Align(p, a), b) ==
+// Align(p, Compose(a, b)) and Align(Align(p, a), Inverse(a)) == Align(p, {})
+// bit for bit. Inputs outside [0,1) are wrapped first.
+PointSet Align(const PointSet& points, AlignOps ops);
+Point2 AlignPoint(Point2 p, AlignOps ops);
+
+// The inverse element: (swap, ix, iy) -> (swap, iy, ix) when swapping,
+// otherwise the element itself.
+AlignOps Inverse(AlignOps ops);
+// The element equal to applying `first`, then `second`.
+AlignOps Compose(AlignOps first, AlignOps second);
+// Direction (degrees, reduced to [0, 180)) that `ops` maps `deg` to.
+double MapDirection(double deg, AlignOps ops);
+
+// "phi=30" for one direction, "phi=10,75" for two.
+std::string ToString(const CanonicalDirections& key);
+// "identity", or the parts joined by '+': "swap+invert_x".
+std::string ToString(AlignOps ops);
+
+}  // namespace alignset

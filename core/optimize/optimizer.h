@@ -1,0 +1,159 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/spectral/frequency_set.h"
+#include "core/util/point_set.h"
+#include "core/spectral/spectral_engine.h"
+#include "core/util/status.h"
+
+namespace alignset {
+
+// Smallest and largest point counts the core accepts. Below 16 there is no
+// meaningful frequency set; above 2^20 a single set would not fit the
+// service's messages.
+inline constexpr uint32_t kMinPoints = 16;
+inline constexpr uint32_t kMaxPoints = 1u << 20;
+
+// What to make: N points whose spectrum is dark along 0°, 90° and the one or
+// two arbitrary directions (degrees, spectral convention: the edge normal).
+struct OptimizationProblem {
+  uint32_t n = 0;
+  std::vector<double> directions;
+  uint64_t seed = 1;
+  // Unset: DefaultFrequencyParams(n).
+  std::optional<FrequencyParams> frequency_params;
+};
+
+// Which loss the revert-and-divide rule watches.
+enum class DivergenceSignal {
+  kSpectrumLoss,  // alignset's default, see OptimizerOptions
+  kTotalLoss,     // the literal rule; kept to measure why it is not the default
+};
+
+struct OptimizerOptions {
+  // The iteration budget; 0 selects DefaultIterationBudget(N).
+  int max_iterations = 0;
+  // First Adam step size. 0 picks DefaultLearningRate() from K.
+  double learning_rate = 0.0;
+  // Total loss L = L_Spec + c * L_SW with c = sw_weight; 0 selects c = 4N.
+  //
+  // The supplement's c = 10 belongs to its own normalization of L_SW, which
+  // the seeds do not give. With L_SW as a mean over points (method.md), the
+  // SW gradient on a point shrinks like 1/N against the spectral one, and
+  // c = 10 leaves the low frequencies under-stratified from N ~ 1000 on
+  // (c = N: 1.04x / 1.35x / 1.57x lower variance than c = 10 at N = 256 /
+  // 1024 / 4096). Between c = N and c = 4N the fully converged sets are
+  // equally good (aligned step edge, θ = 30°, N = 4096, 8 seeds: 1.465e-7
+  // vs 1.475e-7), but c = 4N gets there in about a third of the iterations,
+  // because the variance is decided by the lowest frequencies along θ, which
+  // the SW term stratifies directly (README, "Choices"). sw_weight = 10
+  // reproduces the literal reading.
+  double sw_weight = 0.0;
+  double beta1 = 0.9;
+  double beta2 = 0.999;
+  double epsilon = 1e-12;
+  // The revert-and-divide rule: a step whose *spectrum* loss rises by more
+  // than this fraction over the last accepted state is undone and the
+  // learning rate divided by `revert_divisor`. The SW term is left out of the
+  // trigger on purpose: it jumps whenever a point wraps across the torus edge,
+  // and treating that as divergence collapses the learning rate.
+  double divergence_threshold = 0.10;
+  DivergenceSignal divergence_signal = DivergenceSignal::kSpectrumLoss;
+  double revert_divisor = 10.0;
+  // Plateau rule: when the best total loss has not improved by
+  // `stall_tolerance` (relative) over `stall_iterations` accepted steps, the
+  // learning rate is multiplied by `plateau_factor`; with factor 1 (or
+  // below the floor) the run stops as stalled.
+  int stall_iterations = 200;
+  double stall_tolerance = 1e-3;
+  double plateau_factor = 0.5;
+  // Annealing: the learning rate is multiplied every iteration by the factor
+  // that takes it to `anneal_ratio` times its start at `max_iterations` (on
+  // top of the revert and plateau rules). 1 keeps it constant.
+  double anneal_ratio = 1.0;
+  // The run stops once the learning rate falls below this.
+  double min_learning_rate = 1e-7;
+  // Call the progress callback every this many iterations (and at the end).
+  int progress_every = 10;
+};
+
+// The weight c of L_SW that `options` selects for N points.
+double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
+
+// The iteration budget alignset uses for N points and one or two arbitrary
+// directions: 1000 up to N = 4096, then growing like sqrt(N) (2000 at 16384,
+// 4000 at 65536), and half as much again for two arbitrary directions.
+// Measured with the default schedule, that many iterations bring the aligned
+// step-edge variance within a few percent of a fully converged set (README,
+// "Time to quality"); larger sets need more because their lowest
+// frequencies span more point spacings, and two-direction sets (five strips)
+// were still 8-13% above converged after 1000 iterations at N = 4096 and
+// within 3% after 1500 (4 seeds, bench/results/two_directions_budget.txt).
+int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
+
+// The budget `options` selects for the problem.
+int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
+                           int arbitrary_directions = 1);
+
+// The first step size, scaled to the highest suppressed frequency: a step of
+// lr moves the phase at frequency |v| by 2 pi |v| lr, so lr ~ 1 / |v|max keeps
+// the largest phase change per step a fixed fraction of a cycle.
+double DefaultLearningRate(const std::vector<Frequency>& k);
+
+enum class StopReason { kMaxIterations, kStalled, kLearningRateFloor, kCancelled };
+std::string StopReasonName(StopReason r);
+
+struct ProgressInfo {
+  int iteration = 0;
+  int max_iterations = 0;
+  double loss = 0.0;
+  double spectrum_loss = 0.0;
+  double sw_loss = 0.0;
+  double best_loss = 0.0;
+  double learning_rate = 0.0;
+  int reverts = 0;
+};
+
+// Returning false cancels the optimization (the best set so far is kept).
+using ProgressCallback = std::function<bool(const ProgressInfo&)>;
+
+struct LossTerms {
+  double total = 0.0;
+  double spectrum = 0.0;
+  double sw = 0.0;
+};
+
+struct OptimizationResult {
+  PointSet points;          // the best set seen, in [0,1)^2
+  LossTerms initial;        // at the Owen-Sobol start
+  LossTerms final_loss;     // of `points`
+  FrequencyParams frequency_params;
+  size_t frequency_count = 0;
+  int iterations = 0;
+  int reverts = 0;
+  double final_learning_rate = 0.0;
+  StopReason stop_reason = StopReason::kMaxIterations;
+};
+
+// Checks a problem at the boundary: N in [kMinPoints, kMaxPoints], one or two
+// finite directions, valid frequency parameters.
+Status ValidateProblem(const OptimizationProblem& problem);
+Status ValidateOptions(const OptimizerOptions& options);
+
+// Optimizes the set by Adam on L_Spec + c L_SW from Owen-scrambled Sobol.
+// Deterministic for a given problem and options (the engines' sums do not
+// depend on the thread count).
+StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
+                                      const OptimizerOptions& options, SpectralEngine& engine,
+                                      const ProgressCallback& progress = nullptr);
+
+// L_Spec, L_SW and the total of a given set (no gradient), for reporting.
+LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine);
+
+}  // namespace alignset

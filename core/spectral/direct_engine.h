@@ -1,0 +1,29 @@
+#pragma once
+
+#include <memory>
+
+#include "core/spectral/spectral_engine.h"
+#include "core/util/thread_pool.h"
+
+namespace alignset {
+
+// The reference engine: exact sums over every (point, frequency) pair,
+// accumulated in double. exp(-2 pi i v.s) factors as
+// exp(-2 pi i a x) * exp(-2 pi i b y); each factor is taken from sincos (never
+// from a recurrence) for a block of points, so every term is accurate to a few
+// ulps and the cost is one complex product per pair. Multithreaded over
+// blocks of points.
+class DirectEngine final : public SpectralEngine {
+ public:
+  explicit DirectEngine(int threads);
+  std::string name() const override { return "direct"; }
+  void SetFrequencies(const std::vector<Frequency>& k) override;
+  void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) override;
+
+ private:
+  ThreadPool pool_;
+  std::vector<Frequency> k_;
+  int a_min_ = 0, a_max_ = 0, b_max_ = 0;
+};
+
+}  // namespace alignset

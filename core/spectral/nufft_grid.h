@@ -1,0 +1,123 @@
+#pragma once
+
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+#include "core/spectral/lattice_basis.h"
+#include "core/spectral/nufft_kernel.h"
+#include "core/spectral/nufft_loops.h"
+#include "core/util/point_set.h"
+
+namespace alignset {
+
+// The smallest n >= min_size whose prime factors are 2, 3, 5 and 7 (sizes
+// FFTW transforms fastest).
+int FastFftSize(int min_size);
+
+// Grid size along one axis for modes |w| <= m at the kernel's oversampling.
+int NufftGridSize(int64_t m, const EsKernel& kernel);
+
+// One NUFFT grid: the modes |w1| <= m1, |w2| <= m2 of the points mapped
+// into a lattice basis, u = (p.s, q.s) mod 1.
+//
+//   type 1:  Mode(w) = sum_j exp(-2 pi i w.u_j)                (unit strengths)
+//   type 2:  sum_w c(w) exp(-2 pi i w.u_j)   for every point j
+//
+// The grid does no threading itself: its work comes in stages over ranges
+// (of points, sorted positions or slabs) that the engine runs in parallel
+// across all its grids at once, with as few synchronizations as possible.
+// Spreading is deterministic and free of races without per-thread grids:
+// points are sorted (stably) into slabs of grid rows at least one kernel
+// width tall, and even slabs, then odd ones, are spread, so no two slabs of
+// one pass touch the same row and each cell adds its contributions in a
+// fixed order whatever the thread count. (The last slab spills into padding
+// rows below the grid, folded back at the end, so nothing wraps.)
+//
+// FFTW plans are made once here (under a process-wide lock, since FFTW's
+// planner is not reentrant) and reused by every evaluation.
+class NufftGrid {
+ public:
+  // Scratch for the kernel weights of a block of points, one per worker,
+  // used when the weights are not kept between the passes.
+  struct Scratch {
+    std::vector<double> k1, k2;
+    std::vector<int> row, col;
+  };
+  static constexpr size_t kScratchBlock = 256;
+
+  NufftGrid(const BasisBox& box, const EsKernel& kernel);
+  ~NufftGrid();
+  NufftGrid(const NufftGrid&) = delete;
+  NufftGrid& operator=(const NufftGrid&) = delete;
+
+  int n1() const { return n1_; }
+  int n2() const { return n2_; }
+  int slabs() const { return slabs_; }
+  const BasisBox& box() const { return box_; }
+
+  // Stage 1: sizes the per-point arrays (serial) ...
+  void Resize(size_t count, bool keep_weights);
+  // ... and maps points [begin, end) (any ranges, in parallel).
+  void MapPoints(const PointSet& points, size_t begin, size_t end);
+  // Stage 2 (one call per grid): stable counting sort into slabs; clears
+  // the spreading grid.
+  void SortIntoSlabs();
+  size_t SlabBegin(int slab) const { return slab_start_[slab]; }
+  size_t SlabEnd(int slab) const { return slab_start_[slab + 1]; }
+  // Stage 3, when keeping weights: sorted positions [begin, end).
+  void ComputeWeights(size_t begin, size_t end);
+  // Stage 4: spreads sorted positions [begin, end) lying in slabs of one
+  // parity (all calls of one parity may run at once).
+  void SpreadRange(size_t begin, size_t end, Scratch* scratch);
+  // Stage 5 (one call per grid): folds the padding and transforms.
+  void FinishSpread();
+  std::complex<double> Mode(int64_t w1, int64_t w2) const;
+
+  // Type 2, one grid per thread: coefficients mode by mode (a mode added
+  // twice sums), then the transform.
+  void ClearCoefficients();
+  void AddCoefficient(int64_t w1, int64_t w2, std::complex<double> c);
+  void FinishCoefficients();
+  // by_point[j] = the type-2 sum at point j, for the points at sorted
+  // positions [begin, end) (ranges may run at once).
+  void InterpolateRange(size_t begin, size_t end, std::complex<double>* by_point,
+                        Scratch* scratch) const;
+
+ private:
+  // Weights of sorted positions [begin, end) into scratch (at most
+  // kScratchBlock).
+  void BlockWeights(size_t begin, size_t end, Scratch* scratch) const;
+
+  BasisBox box_;
+  const EsKernel& kernel_;
+  const NufftLoops& loops_;
+  int width_;
+  int n1_, n2_;
+  int stride_;  // row length of the padded grids: n2 + width - 1
+  int slabs_;
+  std::vector<double> inv_phi_hat1_, inv_phi_hat2_;
+
+  size_t count_ = 0;
+  bool keep_weights_ = false;
+  // Per point, in input order.
+  std::vector<double> mapped1_, mapped2_;
+  std::vector<uint16_t> slab_of_;
+  // Per sorted position.
+  std::vector<size_t> slab_start_;
+  std::vector<uint32_t> order_;  // sorted position -> point index
+  std::vector<double> x1_, x2_;  // grid coordinates
+  std::vector<double> k1_, k2_;  // width weights per point, when kept
+  std::vector<int> row_, col_;
+
+  // Padded grids: n1 + width - 1 rows of stride cells.
+  std::vector<double> spread_;                 // real, for type 1
+  std::vector<std::complex<double>> gather_;   // complex, for type 2
+  double* fft_real_ = nullptr;                 // n1 x n2
+  std::complex<double>* fft_half_ = nullptr;   // n1 x (n2 / 2 + 1)
+  std::complex<double>* fft_full_ = nullptr;   // n1 x n2
+  void* plan_r2c_ = nullptr;
+  void* plan_c2c_ = nullptr;
+};
+
+}  // namespace alignset

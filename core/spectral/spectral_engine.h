@@ -1,0 +1,49 @@
+#pragma once
+
+#include <complex>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/spectral/frequency_set.h"
+#include "core/util/point_set.h"
+#include "core/util/status.h"
+
+namespace alignset {
+
+// What an engine computes for a point set S of N points over K:
+//   F(v)   = sum_j exp(-2 pi i v.s_j)            (a type-1 NUFFT)
+//   loss   = mean over v in K of |F(v)|^2 / N     (L_Spec, the mean periodogram)
+//   grad_j = d loss / d s_j
+//          = 4 pi / (N |K|) * sum_v v * Im(conj(F(v)) exp(-2 pi i v.s_j))
+//                                                   (a type-2 NUFFT)
+struct SpectrumEvaluation {
+  std::vector<std::complex<double>> spectrum;  // F over K, in K's order
+  double loss = 0.0;
+  std::vector<Point2> gradient;  // empty unless requested
+};
+
+// The seam between the optimizer and the arithmetic: the direct reference
+// engine, the fast NUFFT engine and the CUDA engine all implement it.
+class SpectralEngine {
+ public:
+  virtual ~SpectralEngine() = default;
+  virtual std::string name() const = 0;
+
+  // Binds the frequency set; engines precompute what depends on K only.
+  virtual void SetFrequencies(const std::vector<Frequency>& k) = 0;
+
+  // Evaluates F and the loss at `points` (and the gradient if asked).
+  virtual void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) = 0;
+};
+
+enum class EngineKind { kAuto, kDirect, kFast, kCuda };
+
+StatusOr<EngineKind> ParseEngineKind(const std::string& name);
+std::string EngineKindName(EngineKind kind);
+
+// Makes an engine of `kind` with `threads` CPU threads (<= 0: all cores).
+// kAuto picks the best engine that is built and usable here.
+StatusOr<std::unique_ptr<SpectralEngine>> MakeSpectralEngine(EngineKind kind, int threads);
+
+}  // namespace alignset
