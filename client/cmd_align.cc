@@ -1,8 +1,8 @@
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "core/align/canonical.h"
@@ -10,52 +10,66 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("align", s, kExitUsage); }
+struct AlignOptions {
+  std::string in;
+  std::vector<double> canonical;
+  std::vector<double> dirs;
+  std::string out;
+};
 
-}  // namespace
+int Usage(const Status& s) { return ReportError("align", s, kExitUsage); }
 
-// alignset align IN --canonical PHI [--canonical PHI2] --dir DEG [--dir DEG2] --out OUT
 // Aligns a set optimized for a canonical key onto the requested directions
 // (degrees, spectral direction = edge normal). The request's key must be the
 // set's key, so a set is never silently aligned from the wrong orbit.
-int RunAlign(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"canonical", "dir", "out"});
-  if (!args.ok()) return Fail(args.status());
-  if (args->positionals().size() != 1) {
-    return Fail(Status::InvalidArgument("expected exactly one input point-set file"));
+int RunAlign(const AlignOptions& o) {
+  if (o.canonical.size() != o.dirs.size()) {
+    return Usage(Status::InvalidArgument("give as many --canonical as --dir angles"));
   }
-  if (!args->Has("out")) return Fail(Status::InvalidArgument("--out is required"));
-  auto canonical = args->Doubles("canonical");
-  if (!canonical.ok()) return Fail(canonical.status());
-  auto dirs = args->Doubles("dir");
-  if (!dirs.ok()) return Fail(dirs.status());
-  auto out = args->String("out", "");
-  if (!out.ok()) return Fail(out.status());
-  if (canonical->size() != dirs->size()) {
-    return Fail(Status::InvalidArgument("give as many --canonical as --dir angles"));
-  }
-  auto request = Canonicalize(*dirs);
-  if (!request.ok()) return Fail(request.status());
-  auto key = Canonicalize(*canonical);
-  if (!key.ok()) return Fail(key.status());
+  auto request = Canonicalize(o.dirs);
+  if (!request.ok()) return Usage(request.status());
+  auto key = Canonicalize(o.canonical);
+  if (!key.ok()) return Usage(key.status());
   if (!(key->key == request->key) || !(key->ops == AlignOps{})) {
-    return Fail(Status::InvalidArgument("the request needs the set of key " +
-                                        ToString(request->key) + "; --canonical names " +
-                                        (key->ops == AlignOps{} ? ToString(key->key)
-                                                                : "a non-canonical direction")));
+    return Usage(Status::InvalidArgument("the request needs the set of key " +
+                                         ToString(request->key) + "; --canonical names " +
+                                         (key->ops == AlignOps{} ? ToString(key->key)
+                                                                 : "a non-canonical direction")));
   }
-  auto points = ReadPointFile(args->positionals()[0]);
-  if (!points.ok()) return Fail(points.status());
+  auto points = ReadPointFile(o.in);
+  if (!points.ok()) return Usage(points.status());
   const PointSet aligned = Align(*points, request->ops);
   std::string served;
   for (int d : request->served_deg) served += (served.empty() ? "" : ",") + std::to_string(d);
   const std::string comment = "alignset align: key " + ToString(request->key) + " -> " + served +
                               " deg (spectral direction = edge normal) by " +
                               ToString(request->ops);
-  if (Status s = WritePointFile(*out, aligned, comment); !s.ok()) return Fail(s);
+  if (Status s = WritePointFile(o.out, aligned, comment); !s.ok()) {
+    return ReportError("align", s, kExitFailure);
+  }
   std::printf("aligned %s to %s deg by %s: %s\n", ToString(request->key).c_str(), served.c_str(),
-              ToString(request->ops).c_str(), out->c_str());
-  return 0;
+              ToString(request->ops).c_str(), o.out.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddAlignCommand(CLI::App& app) {
+  auto o = std::make_shared<AlignOptions>();
+  CLI::App* c = AddCommand(app, "align",
+                           "align a canonical set onto requested directions (swap / invert)");
+  c->add_option("FILE", o->in, "the canonical set (UTK text or .npy)")->required();
+  c->add_option("--canonical", o->canonical,
+                "the set's canonical direction(s), degrees (one per --dir)")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("--dir", o->dirs, "requested direction(s), degrees (edge normal), one or two")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)")->required();
+  c->callback([o] { Finish(RunAlign(*o)); });
 }
 
 }  // namespace alignset::cli

@@ -1,16 +1,17 @@
 #include <cstdio>
+#include <memory>
 #include <string>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "client/progress.h"
-#include "client/service_flags.h"
+#include "client/service_options.h"
 
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("get", s, kExitService); }
+int Usage(const Status& s) { return ReportError("get", s, kExitUsage); }
+int Failure(const Status& s) { return ReportError("get", s, kExitFailure); }
 
 std::string Join(const std::vector<int>& v) {
   std::string s;
@@ -18,37 +19,28 @@ std::string Join(const std::vector<int>& v) {
   return s;
 }
 
-}  // namespace
+struct GetOptions {
+  int64_t n = 0;
+  std::vector<double> dirs;
+  std::string out;
+  bool quiet = false;
+  ServiceOptions service;
+};
 
-int RunGet(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, ServiceFlags({"n", "dir", "out"}), {"quiet"});
-  if (!args.ok()) return Fail(args.status());
-  if (!args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
+int RunGet(const GetOptions& o) {
+  if (o.dirs.size() > 2) {
+    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
+                                         std::to_string(o.dirs.size())));
   }
-  if (!args->Has("n")) return Fail(Status::InvalidArgument("--n is required"));
-  if (!args->Has("out")) return Fail(Status::InvalidArgument("--out is required"));
-  // The server checks N against its own maximum; here only the type.
-  auto n = args->Int("n", 0, 0, UINT32_MAX);
-  if (!n.ok()) return Fail(n.status());
-  auto dirs = args->Doubles("dir");
-  if (!dirs.ok()) return Fail(dirs.status());
-  if (dirs->empty() || dirs->size() > 2) {
-    return Fail(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
-                                        std::to_string(dirs->size())));
-  }
-  auto out = args->String("out", "");
-  if (!out.ok()) return Fail(out.status());
-  auto client = ConnectFromArgs(*args);
-  if (!client.ok()) return Fail(client.status());
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
 
   // The streaming call shows queue position and optimization progress; a
   // cache hit arrives as its only message.
   Progress progress("optimize");
   bool shown = false;
-  const bool quiet = args->Has("quiet");
-  auto set = (*client)->WatchAlignedSet(static_cast<uint32_t>(*n), *dirs, [&](const WatchUpdate& u) {
-    if (quiet) return;
+  auto set = (*client)->WatchAlignedSet(static_cast<uint32_t>(o.n), o.dirs, [&](const WatchUpdate& u) {
+    if (o.quiet) return;
     shown = true;
     if (u.queued) {
       progress.Update(0, 1, "queued at position " + std::to_string(u.queue_position));
@@ -58,7 +50,7 @@ int RunGet(int argc, char** argv) {
     std::snprintf(detail, sizeof(detail), "loss %.5g lr %.2g", u.loss, u.learning_rate);
     progress.Update(u.iteration, u.max_iterations, detail);
   });
-  if (!set.ok()) return Fail(set.status());
+  if (!set.ok()) return Failure(set.status());
   if (shown) progress.Finish("");
 
   const SetInfo& i = set->info;
@@ -70,7 +62,7 @@ int RunGet(int argc, char** argv) {
                 i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.swapped, i.inverted,
                 i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
                 i.algorithm_version);
-  if (Status s = WritePointFile(*out, set->points, comment); !s.ok()) return Fail(s);
+  if (Status s = WritePointFile(o.out, set->points, comment); !s.ok()) return Failure(s);
 
   std::printf("N              %u\n", i.n);
   std::printf("directions     0, 90, %s (served; deg, spectral = edge normal)\n",
@@ -84,8 +76,26 @@ int RunGet(int argc, char** argv) {
   std::printf("optimization   %d iterations, %.2f s, engine %s, profile %s\n", i.iterations,
               i.optimize_seconds, i.engine.c_str(), i.profile.c_str());
   std::printf("from cache     %s\n", i.from_cache ? "yes" : "no");
-  std::printf("wrote          %s\n", out->c_str());
-  return 0;
+  std::printf("wrote          %s\n", o.out.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddGetCommand(CLI::App& app) {
+  auto o = std::make_shared<GetOptions>();
+  CLI::App* c = AddCommand(app, "get",
+                           "an aligned set from alignset-server (.npy or UTK text by extension)");
+  // The server checks N against its own maximum; here only the type.
+  c->add_option("-n,--n", o->n, "number of points")->required()->check(IntegerIn(0, UINT32_MAX));
+  c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)")->required();
+  c->add_flag("-q,--quiet", o->quiet, "no progress display");
+  AddServiceOptions(c, &o->service);
+  c->callback([o] { Finish(RunGet(*o)); });
 }
 
 }  // namespace alignset::cli

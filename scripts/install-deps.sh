@@ -9,7 +9,7 @@ PACKAGES=(
   libeigen3-dev libfftw3-dev
   libsqlite3-dev sqlite3
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
-  libspdlog-dev libfmt-dev openssl
+  libspdlog-dev libfmt-dev libcli11-dev openssl
   python3 python3-numpy python3-matplotlib
   yamllint buildah podman debootstrap
 )
