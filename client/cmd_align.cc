@@ -36,19 +36,23 @@ int RunAlign(const AlignOptions& o) {
                                          (key->ops == AlignOps{} ? ToString(key->key)
                                                                  : "a non-canonical direction")));
   }
-  auto points = ReadPointFile(o.in);
-  if (!points.ok()) return Usage(points.status());
-  const PointSet aligned = Align(*points, request->ops);
+  // Every set of a multi-set file is aligned, and written as several again.
+  auto sets = ReadPointSets(o.in);
+  if (!sets.ok()) return Usage(sets.status());
+  std::vector<PointSet> aligned;
+  for (const PointSet& s : *sets) aligned.push_back(Align(s, request->ops));
   std::string served;
   for (int d : request->served_deg) served += (served.empty() ? "" : ",") + std::to_string(d);
   const std::string comment = "alignset align: key " + ToString(request->key) + " -> " + served +
                               " deg (spectral direction = edge normal) by " +
                               ToString(request->ops);
-  if (Status s = WritePointFile(o.out, aligned, comment); !s.ok()) {
-    return ReportError("align", s, kExitFailure);
-  }
-  std::printf("aligned %s to %s deg by %s: %s\n", ToString(request->key).c_str(), served.c_str(),
-              ToString(request->ops).c_str(), o.out.c_str());
+  const Status written = aligned.size() > 1 ? WritePointSets(o.out, aligned, comment)
+                                            : WritePointFile(o.out, aligned[0], comment);
+  if (!written.ok()) return ReportError("align", written, kExitFailure);
+  const std::string sets_text = aligned.size() > 1 ? std::to_string(aligned.size()) + " sets of " : "";
+  std::fprintf(ReportStreamFor(o.out), "aligned %s%s to %s deg by %s: %s\n", sets_text.c_str(),
+               ToString(request->key).c_str(), served.c_str(),
+               ToString(request->ops).c_str(), o.out.c_str());
   return kExitOk;
 }
 
@@ -58,7 +62,7 @@ void AddAlignCommand(CLI::App& app) {
   auto o = std::make_shared<AlignOptions>();
   CLI::App* c = AddCommand(app, "align",
                            "align a canonical set onto requested directions (swap / invert)");
-  c->add_option("FILE", o->in, "the canonical set (UTK text or .npy)")->required();
+  c->add_option("FILE", o->in, "the canonical set(s): UTK text, .npy, .csv; - stdin")->required();
   c->add_option("--canonical", o->canonical,
                 "the set's canonical direction(s), degrees (one per --dir)")
       ->required()
@@ -68,7 +72,7 @@ void AddAlignCommand(CLI::App& app) {
       ->required()
       ->allow_extra_args(false)
       ->check(FiniteNumber());
-  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)")->required();
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")->required();
   c->callback([o] { Finish(RunAlign(*o)); });
 }
 

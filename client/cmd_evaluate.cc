@@ -96,7 +96,7 @@ void AddEvaluateCommand(CLI::App& app) {
   CLI::App* c = AddCommand(app, "evaluate",
                            "CP-rotated variance on parallel step edges and strip periodograms,\n"
                            "beside Owen-scrambled Sobol sets of the same N");
-  c->add_option("FILE", o->file, "the point set (UTK text or .npy)")->required();
+  c->add_option("FILE", o->file, "the point set: UTK text, .npy, .csv; - stdin")->required();
   c->add_option("--normal", o->normal, "edge normal in degrees (the spectral direction)")
       ->required()
       ->check(FiniteNumber());

@@ -64,19 +64,20 @@ int RunGet(const GetOptions& o) {
                 i.algorithm_version);
   if (Status s = WritePointFile(o.out, set->points, comment); !s.ok()) return Failure(s);
 
-  std::printf("N              %u\n", i.n);
-  std::printf("directions     0, 90, %s (served; deg, spectral = edge normal)\n",
+  FILE* report = ReportStreamFor(o.out);
+  std::fprintf(report, "N              %u\n", i.n);
+  std::fprintf(report, "directions     0, 90, %s (served; deg, spectral = edge normal)\n",
               Join(i.served_deg).c_str());
-  std::printf("canonical key  %s (index %llu)\n", i.key_text.c_str(),
+  std::fprintf(report, "canonical key  %s (index %llu)\n", i.key_text.c_str(),
               static_cast<unsigned long long>(i.key_index));
-  std::printf("alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
+  std::fprintf(report, "alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
               i.inverted ? "yes" : "no");
-  std::printf("loss           %.6g (spectrum %.6g, SW %.6g)\n", i.loss_total, i.loss_spectrum,
+  std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", i.loss_total, i.loss_spectrum,
               i.loss_sw);
-  std::printf("optimization   %d iterations, %.2f s, engine %s, profile %s\n", i.iterations,
+  std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n", i.iterations,
               i.optimize_seconds, i.engine.c_str(), i.profile.c_str());
-  std::printf("from cache     %s\n", i.from_cache ? "yes" : "no");
-  std::printf("wrote          %s\n", o.out.c_str());
+  std::fprintf(report, "from cache     %s\n", i.from_cache ? "yes" : "no");
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
   return kExitOk;
 }
 
@@ -92,7 +93,7 @@ void AddGetCommand(CLI::App& app) {
       ->required()
       ->allow_extra_args(false)
       ->check(FiniteNumber());
-  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)")->required();
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")->required();
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "client/commands.h"
 #include "client/point_file.h"
@@ -23,6 +24,8 @@ struct OptimizeOptions {
   std::string out;
   // Overrides of the frequency set's shape; unset ones keep the default.
   std::optional<double> length, width, radius;
+  // -m: several sets, one per seed, written as a multi-set file.
+  std::optional<int> sets;
 };
 
 int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
@@ -49,51 +52,79 @@ int RunOptimize(const OptimizeOptions& o) {
   if (Status s = ValidateProblem(problem); !s.ok()) return Usage(s);
 
   // Fail before the work if the output cannot be written.
-  if (Status s = WritePointFile(o.out, {}, "alignset: optimization in progress"); !s.ok()) {
-    return Failure(s);
+  if (!IsStdStream(o.out)) {
+    if (Status s = WritePointFile(o.out, {}, "alignset: optimization in progress"); !s.ok()) {
+      return Failure(s);
+    }
   }
   auto engine = MakeSpectralEngine(*kind, static_cast<int>(o.threads));
   if (!engine.ok()) return Failure(engine.status());
 
-  Progress progress("optimize");
-  const auto t0 = std::chrono::steady_clock::now();
-  auto result = Optimize(problem, options, **engine, [&](const ProgressInfo& p) {
-    char detail[160];
-    std::snprintf(detail, sizeof(detail), "loss %.5g (spec %.4g sw %.3g) lr %.2g reverts %d",
-                  p.loss, p.spectrum_loss, p.sw_loss, p.learning_rate, p.reverts);
-    progress.Update(p.iteration, p.max_iterations, detail);
-    return true;
-  });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!result.ok()) return Failure(result.status());
-  progress.Finish("");
+  // -m M: M sets from the seeds seed, seed + 1, ... (UTK's -m).
+  const int sets = o.sets.value_or(1);
+  std::vector<OptimizationResult> results;
+  std::vector<double> seconds;
+  for (int i = 0; i < sets; ++i) {
+    problem.seed = static_cast<uint64_t>(o.seed) + static_cast<uint64_t>(i);
+    Progress progress(sets == 1 ? "optimize"
+                                : "optimize " + std::to_string(i + 1) + "/" + std::to_string(sets));
+    const auto t0 = std::chrono::steady_clock::now();
+    auto result = Optimize(problem, options, **engine, [&](const ProgressInfo& p) {
+      char detail[160];
+      std::snprintf(detail, sizeof(detail), "loss %.5g (spec %.4g sw %.3g) lr %.2g reverts %d",
+                    p.loss, p.spectrum_loss, p.sw_loss, p.learning_rate, p.reverts);
+      progress.Update(p.iteration, p.max_iterations, detail);
+      return true;
+    });
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (!result.ok()) return Failure(result.status());
+    progress.Finish("");
+    results.push_back(std::move(result).value());
+  }
 
   std::string dir_text;
   for (double d : problem.directions) dir_text += (dir_text.empty() ? "" : ",") + std::to_string(d);
-  char comment[512];
-  std::snprintf(comment, sizeof(comment),
-                "alignset optimized set: N=%u directions(deg, edge normal)=0,90,%s seed=%llu\n"
-                "loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s",
-                problem.n, dir_text.c_str(), static_cast<unsigned long long>(problem.seed),
-                result->final_loss.total, result->final_loss.spectrum, result->final_loss.sw,
-                result->iterations, (*engine)->name().c_str());
-  if (Status s = WritePointFile(o.out, result->points, comment); !s.ok()) return Failure(s);
+  std::string comment;
+  std::vector<PointSet> points;
+  for (int i = 0; i < sets; ++i) {
+    const OptimizationResult& r = results[i];
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "%salignset optimized set%s: N=%u directions(deg, edge normal)=0,90,%s seed=%llu\n"
+                  "loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s",
+                  i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", problem.n,
+                  dir_text.c_str(), static_cast<unsigned long long>(o.seed + i), r.final_loss.total,
+                  r.final_loss.spectrum, r.final_loss.sw, r.iterations, (*engine)->name().c_str());
+    comment += line;
+    points.push_back(r.points);
+  }
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
 
-  std::printf("N              %u\n", problem.n);
-  std::printf("directions     0, 90, %s (deg, spectral = edge normal)\n", dir_text.c_str());
-  std::printf("frequencies    |K| = %zu (length %.1f, width %.2f, radius %.1f)\n",
-              result->frequency_count, result->frequency_params.length,
-              result->frequency_params.width, result->frequency_params.radius);
-  std::printf("engine         %s\n", (*engine)->name().c_str());
-  std::printf("loss           %.6g -> %.6g\n", result->initial.total, result->final_loss.total);
-  std::printf("spectrum loss  %.6g -> %.6g (mean periodogram over K; white noise = 1)\n",
-              result->initial.spectrum, result->final_loss.spectrum);
-  std::printf("SW loss        %.6g -> %.6g\n", result->initial.sw, result->final_loss.sw);
-  std::printf("iterations     %d (%s, %d reverts, final learning rate %.3g)\n", result->iterations,
-              StopReasonName(result->stop_reason).c_str(), result->reverts,
-              result->final_learning_rate);
-  std::printf("time           %.2f s\n", seconds);
-  std::printf("wrote          %s\n", o.out.c_str());
+  FILE* report = ReportStreamFor(o.out);
+  const OptimizationResult& first = results[0];
+  std::fprintf(report, "N              %u\n", problem.n);
+  std::fprintf(report, "directions     0, 90, %s (deg, spectral = edge normal)\n", dir_text.c_str());
+  std::fprintf(report, "frequencies    |K| = %zu (length %.1f, width %.2f, radius %.1f)\n",
+               first.frequency_count, first.frequency_params.length, first.frequency_params.width,
+               first.frequency_params.radius);
+  std::fprintf(report, "engine         %s\n", (*engine)->name().c_str());
+  for (int i = 0; i < sets; ++i) {
+    const OptimizationResult& r = results[i];
+    if (sets > 1) {
+      std::fprintf(report, "set %-10d seed %llu\n", i, static_cast<unsigned long long>(o.seed + i));
+    }
+    std::fprintf(report, "loss           %.6g -> %.6g\n", r.initial.total, r.final_loss.total);
+    std::fprintf(report, "spectrum loss  %.6g -> %.6g (mean periodogram over K; white noise = 1)\n",
+                 r.initial.spectrum, r.final_loss.spectrum);
+    std::fprintf(report, "SW loss        %.6g -> %.6g\n", r.initial.sw, r.final_loss.sw);
+    std::fprintf(report, "iterations     %d (%s, %d reverts, final learning rate %.3g)\n",
+                 r.iterations, StopReasonName(r.stop_reason).c_str(), r.reverts,
+                 r.final_learning_rate);
+    std::fprintf(report, "time           %.2f s\n", seconds[i]);
+  }
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
   return kExitOk;
 }
 
@@ -114,7 +145,11 @@ void AddOptimizeCommand(CLI::App& app) {
   c->add_option("-s,--seed", o->seed, "seed of the Owen-scrambled Sobol start")
       ->capture_default_str()
       ->check(IntegerIn(0, INT64_MAX));
-  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)")->required();
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
+      ->required();
+  c->add_option("-m,--sets", o->sets,
+                "several sets, from the seeds S, S+1, ...: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, 4096));
   c->add_option("--engine", o->engine, "spectral engine: auto, direct, fast or cuda")
       ->capture_default_str();
   c->add_option("--threads", o->threads, "engine threads (0: all cores)")

@@ -1,5 +1,7 @@
 #include <cstdio>
 #include <memory>
+#include <optional>
+#include <vector>
 #include <string>
 
 #include "client/commands.h"
@@ -18,6 +20,8 @@ struct SampleOptions {
   bool sheared = false;
   std::string out;
   bool list = false;
+  // -m: several sets, from the seeds seed, seed + 1, ... (UTK's -m).
+  std::optional<int> sets;
 };
 
 int Usage(const Status& s) { return ReportError("sample", s, kExitUsage); }
@@ -44,18 +48,26 @@ int RunSample(const SampleOptions& o) {
   }
   if (o.n == 0) return Usage(Status::InvalidArgument("--n is required"));
   if (o.out.empty()) return Usage(Status::InvalidArgument("--out is required"));
-  auto points = Sample(o.kind, static_cast<uint32_t>(o.n), static_cast<uint64_t>(o.seed));
-  if (!points.ok()) return Usage(points.status());
+  const int count = o.sets.value_or(1);
+  std::vector<PointSet> sets;
+  for (int i = 0; i < count; ++i) {
+    auto points = Sample(o.kind, static_cast<uint32_t>(o.n), static_cast<uint64_t>(o.seed + i));
+    if (!points.ok()) return Usage(points.status());
+    sets.push_back(o.sheared ? Shear(*points, o.shear) : std::move(points).value());
+  }
   std::string comment = "alignset sample " + o.kind + " N=" + std::to_string(o.n) +
-                        " seed=" + std::to_string(o.seed);
+                        (count > 1 ? " seeds=" + std::to_string(o.seed) + ".." +
+                                         std::to_string(o.seed + count - 1)
+                                   : " seed=" + std::to_string(o.seed));
   if (o.sheared) {
-    *points = Shear(*points, o.shear);
     comment += " sheared to " + std::to_string(o.shear) + " deg (spectral direction = edge normal)";
   }
-  if (Status s = WritePointFile(o.out, *points, comment); !s.ok()) {
-    return ReportError("sample", s, kExitFailure);
-  }
-  std::printf("wrote %zu %s points to %s\n", points->size(), o.kind.c_str(), o.out.c_str());
+  const Status written = o.sets ? WritePointSets(o.out, sets, comment)
+                                : WritePointFile(o.out, sets[0], comment);
+  if (!written.ok()) return ReportError("sample", written, kExitFailure);
+  const std::string sets_text = o.sets ? std::to_string(count) + " sets of " : "";
+  std::fprintf(ReportStreamFor(o.out), "wrote %s%lld %s points to %s\n", sets_text.c_str(),
+               static_cast<long long>(o.n), o.kind.c_str(), o.out.c_str());
   return kExitOk;
 }
 
@@ -71,7 +83,10 @@ void AddSampleCommand(CLI::App& app) {
                 "shear the set (Algorithm 2) so that its dark axis moves onto DEG\n"
                 "(spectral direction = edge normal)")
       ->check(FiniteNumber());
-  c->add_option("-o,--out", o->out, "output file (UTK text, or .npy by extension)");
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout");
+  c->add_option("-m,--sets", o->sets,
+                "several sets, from the seeds S, S+1, ...: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, 1 << 16));
   c->add_flag("--list", o->list, "list the sampler kinds and exit");
   c->footer([] { return SamplerList(); });
   c->callback([o, shear] {

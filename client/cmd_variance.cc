@@ -21,20 +21,24 @@ struct VarianceOptions {
 int Usage(const Status& s) { return ReportError("variance", s, kExitUsage); }
 
 // Machine-readable CP-rotated variance on step edges through the centre, one
-// tab-separated line per (file, normal): file, N, normal, variance, std. error.
+// tab-separated line per (set, normal): file, N, normal, variance, std. error.
 // Every set sees the same shifts for a given seed.
 int RunVariance(const VarianceOptions& o) {
   // Every file is read before the first line, so a bad one leaves no output.
+  // A file with several sets gives one line per set, named FILE[k].
+  std::vector<std::string> names;
   std::vector<PointSet> sets;
   for (const std::string& path : o.files) {
-    auto points = ReadPointFile(path);
-    if (!points.ok()) return Usage(points.status());
-    if (points->empty()) return Usage(Status::InvalidArgument(path + ": no points"));
-    sets.push_back(std::move(points).value());
+    auto read = ReadPointSets(path);
+    if (!read.ok()) return Usage(read.status());
+    for (size_t k = 0; k < read->size(); ++k) {
+      names.push_back(read->size() > 1 ? path + "[" + std::to_string(k) + "]" : path);
+      sets.push_back(std::move((*read)[k]));
+    }
   }
   std::printf("# file\tN\tnormal_deg\tvariance\tstd_error\n");
   for (size_t i = 0; i < sets.size(); ++i) {
-    const std::string& path = o.files[i];
+    const std::string& path = names[i];
     const PointSet* points = &sets[i];
     for (double normal : o.normals) {
       const StepIntegrand f(normal);
@@ -54,7 +58,7 @@ void AddVarianceCommand(CLI::App& app) {
   auto o = std::make_shared<VarianceOptions>();
   CLI::App* c = AddCommand(app, "variance",
                            "CP-rotated variance on step edges, one tab-separated line each");
-  c->add_option("FILE", o->files, "point sets (UTK text or .npy)")->required();
+  c->add_option("FILE", o->files, "point-set files (UTK text, .npy, .csv; - stdin), each with one or several sets")->required();
   c->add_option("--normal", o->normals, "edge normal in degrees, repeatable")
       ->required()
       ->allow_extra_args(false)
