@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "client/cli_app.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "core/align/canonical.h"
 #include "core/sampling/owen_sobol.h"
 #include "storage/set_cache.h"
@@ -42,7 +42,7 @@ int Fail(const Status& s) {
 
 struct LoadOptions {
   std::string db;
-  std::string server = alignset::cli::kDefaultServerAddress;
+  std::string server = alignset::kDefaultServerAddress;
   std::vector<int64_t> n = {4096, 65536};
   std::vector<int64_t> clients = {1, 8, 64};
   double dir = 30.0;
@@ -90,10 +90,10 @@ Row Measure(const std::string& server, uint32_t n, double dir, int clients, doub
   std::vector<std::thread> threads;
   for (int c = 0; c < clients; ++c) {
     threads.emplace_back([&, c] {
-      alignset::cli::ConnectOptions o;
+      alignset::ConnectOptions o;
       o.address = server;
       o.separate_connection = true;
-      auto client = alignset::cli::ServiceClient::Connect(o);
+      auto client = alignset::ServiceClient::Connect(o);
       if (!client.ok()) {
         ++errors;
         return;

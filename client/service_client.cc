@@ -1,4 +1,4 @@
-#include "client/service_client.h"
+#include "alignset/client.h"
 
 #include <grpcpp/grpcpp.h>
 
@@ -11,7 +11,7 @@
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
-namespace alignset::cli {
+namespace alignset {
 namespace {
 
 static_assert(std::endian::native == std::endian::little,
@@ -169,14 +169,21 @@ struct ServiceClient::Impl {
   std::unique_ptr<v1::AlignSet::Stub> stub;
   std::unique_ptr<grpc::health::v1::Health::Stub> health;
 
-  void Prepare(grpc::ClientContext* ctx, bool unary) const {
+  // The token, and the deadline: the call's own, else (unary calls only)
+  // the connection's default.
+  void Prepare(grpc::ClientContext* ctx, bool unary, const CallOptions& call) const {
     if (!options.token.empty()) ctx->AddMetadata("authorization", "Bearer " + options.token);
-    if (unary && options.timeout_seconds > 0) {
+    const double timeout = call.timeout_seconds ? *call.timeout_seconds
+                           : unary              ? options.timeout_seconds
+                                                : 0.0;
+    if (timeout > 0) {
       ctx->set_deadline(std::chrono::system_clock::now() +
-                        std::chrono::microseconds(static_cast<int64_t>(options.timeout_seconds * 1e6)));
+                        std::chrono::microseconds(static_cast<int64_t>(timeout * 1e6)));
     }
   }
   Status Fail(const grpc::Status& s) const { return FromGrpc(s, options.address); }
+  StatusOr<std::vector<BatchItem>> Batch(const v1::AlignedSetsRequest& req,
+                                         const CallOptions& call) const;
 };
 
 ServiceClient::ServiceClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -231,20 +238,72 @@ StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
 }
 }  // namespace
 
-StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs) {
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs,
+                                                  const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::AlignedSetResponse resp;
   grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs), &resp);
   if (!s.ok()) return impl_->Fail(s);
   return FromResponse(&resp);
 }
 
+namespace {
+// The status of one batch item, in the same form as a failed call's.
+Status ItemStatus(const v1::AlignedSetsItem& item, const std::string& address) {
+  return FromGrpc(grpc::Status(static_cast<grpc::StatusCode>(item.code()), item.message()), address);
+}
+}  // namespace
+
+StatusOr<std::vector<BatchItem>> ServiceClient::Impl::Batch(const v1::AlignedSetsRequest& req,
+                                                            const CallOptions& call) const {
+  grpc::ClientContext ctx;
+  Prepare(&ctx, true, call);
+  v1::AlignedSetsResponse resp;
+  grpc::Status s = stub->GetAlignedSets(&ctx, req, &resp);
+  if (!s.ok()) return Fail(s);
+  std::vector<BatchItem> out(static_cast<size_t>(resp.items_size()));
+  for (int i = 0; i < resp.items_size(); ++i) {
+    v1::AlignedSetsItem* item = resp.mutable_items(i);
+    if (item->code() != 0) {
+      out[i].status = ItemStatus(*item, options.address);
+      continue;
+    }
+    auto set = FromResponse(item->mutable_set());
+    if (!set.ok()) {
+      out[i].status = set.status();
+      continue;
+    }
+    out[i].set = std::move(set).value();
+  }
+  return out;
+}
+
+StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector<SetRequest>& items,
+                                                               const CallOptions& call) {
+  v1::AlignedSetsRequest req;
+  for (const SetRequest& r : items) *req.add_items() = MakeRequest(r.n, r.directions_deg);
+  auto out = impl_->Batch(req, call);
+  if (out.ok() && out->size() != items.size()) {
+    return Status::Internal("the server answered " + std::to_string(out->size()) + " items for " +
+                            std::to_string(items.size()));
+  }
+  return out;
+}
+
+StatusOr<std::vector<BatchItem>> ServiceClient::GetOneDirectionSpace(uint32_t n,
+                                                                     const CallOptions& call) {
+  v1::AlignedSetsRequest req;
+  req.set_space(v1::ONE_DIRECTION);
+  req.set_space_n(n);
+  return impl_->Batch(req, call);
+}
+
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     uint32_t n, const std::vector<double>& dirs,
-    const std::function<void(const WatchUpdate&)>& on_update) {
+    const std::function<void(const WatchUpdate&)>& on_update, const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false);
+  impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs));
   v1::WatchEvent ev;
   std::optional<StatusOr<AlignedSet>> result;
@@ -275,7 +334,8 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
 }
 
 StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
-    const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update) {
+    const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update,
+    const CallOptions& call) {
   v1::PrecomputeRequest req;
   for (uint32_t n : spec.n) req.add_n(n);
   switch (spec.space) {
@@ -293,7 +353,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_shard_index(spec.shard_index);
   req.set_shard_count(spec.shard_count);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false);
+  impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->Precompute(&ctx, req);
   v1::PrecomputeProgress p;
   PrecomputeUpdate last;
@@ -307,23 +367,24 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
 }
 
 StatusOr<PointSet> ServiceClient::GetSamples(const std::string& sampler, uint32_t n, uint64_t seed,
-                                             std::optional<double> shear_deg) {
+                                             std::optional<double> shear_deg,
+                                             const CallOptions& call) {
   v1::SamplesRequest req;
   req.set_sampler(sampler);
   req.set_n(n);
   req.set_seed(seed);
   if (shear_deg) req.set_shear_deg(*shear_deg);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::SamplesResponse resp;
   grpc::Status s = impl_->stub->GetSamples(&ctx, req, &resp);
   if (!s.ok()) return impl_->Fail(s);
   return DecodePoints(resp.points(), resp.n());
 }
 
-StatusOr<CacheInfo> ServiceClient::GetCacheStats() {
+StatusOr<CacheInfo> ServiceClient::GetCacheStats(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::CacheStatsResponse resp;
   grpc::Status s = impl_->stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -338,9 +399,9 @@ StatusOr<CacheInfo> ServiceClient::GetCacheStats() {
   return c;
 }
 
-StatusOr<ServiceMetrics> ServiceClient::GetMetrics() {
+StatusOr<ServiceMetrics> ServiceClient::GetMetrics(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::MetricsResponse resp;
   grpc::Status s = impl_->stub->GetMetrics(&ctx, v1::MetricsRequest(), &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -348,13 +409,14 @@ StatusOr<ServiceMetrics> ServiceClient::GetMetrics() {
 }
 
 StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const std::string& profile,
-                                                               uint32_t limit) {
+                                                               uint32_t limit,
+                                                               const CallOptions& call) {
   v1::ListCachedSetsRequest req;
   req.set_n(n);
   req.set_profile(profile);
   req.set_limit(limit);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::ListCachedSetsResponse resp;
   grpc::Status s = impl_->stub->ListCachedSets(&ctx, req, &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -366,9 +428,9 @@ StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const
   return out;
 }
 
-StatusOr<bool> ServiceClient::Healthy() {
+StatusOr<bool> ServiceClient::Healthy(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   grpc::health::v1::HealthCheckRequest req;
   grpc::health::v1::HealthCheckResponse resp;
   grpc::Status s = impl_->health->Check(&ctx, req, &resp);
@@ -376,4 +438,4 @@ StatusOr<bool> ServiceClient::Healthy() {
   return resp.status() == grpc::health::v1::HealthCheckResponse::SERVING;
 }
 
-}  // namespace alignset::cli
+}  // namespace alignset

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "client/cli_app.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 
 namespace alignset::cli {
 

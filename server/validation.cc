@@ -43,3 +43,22 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
 }
 
 }  // namespace alignset::server
+
+namespace alignset::server {
+
+Status ValidateBatchSize(size_t items, uint64_t total_points) {
+  if (items == 0) return Status::InvalidArgument("the batch has no items");
+  if (items > kMaxBatchItems) {
+    return Status::InvalidArgument("the batch has " + std::to_string(items) + " items, above the " +
+                                   "maximum of " + std::to_string(kMaxBatchItems) +
+                                   " per call: split it");
+  }
+  if (total_points > kMaxBatchPoints) {
+    return Status::InvalidArgument("the batch asks for " + std::to_string(total_points) +
+                                   " points in all, above the maximum of " +
+                                   std::to_string(kMaxBatchPoints) + " per call: split it");
+  }
+  return Status::Ok();
+}
+
+}  // namespace alignset::server

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <string>
 
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "storage/set_cache.h"
 #include "tests/e2e/server_process.h"
 
@@ -74,9 +74,9 @@ TEST(ServerCli, EnvironmentVariablesConfigureAndFlagsWin) {
   {
     ServerProcess server(dir.path(), {"--workers", "1", "--threads-per-worker", "1"});
     ASSERT_EQ(server.error(), "");
-    cli::ConnectOptions o;
+    ConnectOptions o;
     o.address = server.address();
-    auto client = cli::ServiceClient::Connect(o);
+    auto client = ServiceClient::Connect(o);
     ASSERT_TRUE(client.ok());
     auto over = (*client)->GetAlignedSet(2048, {30.0});
     ASSERT_FALSE(over.ok());
@@ -90,9 +90,9 @@ TEST(ServerCli, EnvironmentVariablesConfigureAndFlagsWin) {
   {
     ServerProcess server(dir.path(), {"--max-n", "4096", "--workers", "1"});
     ASSERT_EQ(server.error(), "");
-    cli::ConnectOptions o;
+    ConnectOptions o;
     o.address = server.address();
-    auto client = cli::ServiceClient::Connect(o);
+    auto client = ServiceClient::Connect(o);
     ASSERT_TRUE(client.ok());
     auto set = (*client)->GetAlignedSet(2048, {30.0});
     ASSERT_TRUE(set.ok()) << set.status().message();
@@ -105,9 +105,9 @@ TEST(ServerCli, TheCliVersionNamesTheProfileOfADefaultServer) {
   TempDir dir;
   ServerProcess server(dir.path(), {});
   ASSERT_EQ(server.error(), "");
-  cli::ConnectOptions o;
+  ConnectOptions o;
   o.address = server.address();
-  auto client = cli::ServiceClient::Connect(o);
+  auto client = ServiceClient::Connect(o);
   ASSERT_TRUE(client.ok());
   auto stats = (*client)->GetCacheStats();
   ASSERT_TRUE(stats.ok()) << stats.status().message();
