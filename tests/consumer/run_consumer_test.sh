@@ -2,7 +2,8 @@
 # The installed package, as a user meets it (a CTest): installs the build into a
 # fresh prefix, builds tests/consumer against that prefix only, once with CMake's
 # find_package(alignset) and once with pkg-config, starts the installed
-# alignset-server on loopback and runs both consumers against it.
+# alignset-server on loopback and runs both consumers (and the installed Python
+# package) against it.
 #   run_consumer_test.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 BUILD="$1"
@@ -62,4 +63,13 @@ done
 ADDR="127.0.0.1:$(cat "$WORK/port")"
 "$WORK/cmake-build/alignset_consumer" "$ADDR"
 "$WORK/pc-consumer" "$ADDR"
+# The installed Python package too, when the build made it.
+PYDIR="$(find "$PREFIX" -type d -path '*dist-packages' | head -n 1)"
+if [ -n "$PYDIR" ] && [ -f "$PYDIR/alignset/v1/alignset_pb2.py" ]; then
+  PYTHONPATH="$PYDIR" /usr/bin/python3 -c "
+import sys, alignset
+p = alignset.Client(sys.argv[1], timeout=60).get(64, 30)
+assert p.shape == (64, 2), p.shape
+print('installed Python package: a (64, 2) set')" "$ADDR"
+fi
 echo "run_consumer_test: find_package and pkg-config consumers both fetched sets from $ADDR"
