@@ -142,7 +142,7 @@ int RunList(const CacheOptions& o) {
   if (!cache.ok()) return Fail("list", cache.status());
   auto rows = (*cache)->ListSummaries(n, o.profile);
   if (!rows.ok()) return Fail("list", rows.status());
-  std::printf("%8s %-8s %-16s %12s %12s %12s %7s %9s %-8s %-20s %3s %10s\n", "n", "dirs", "profile",
+  std::printf("%8s %-11s %-16s %12s %12s %12s %7s %9s %-8s %-20s %3s %10s\n", "n", "dirs [r]", "profile",
               "loss", "spectrum", "sw", "iters", "seconds", "engine", "created", "alg", "bytes");
   for (const storage::SetSummary& s : *rows) {
     std::string dirs = std::to_string(s.key.dirs.phi1);
@@ -150,7 +150,8 @@ int RunList(const CacheOptions& o) {
       dirs += ',';
       dirs += std::to_string(s.key.dirs.phi2);
     }
-    std::printf("%8u %-8s %-16s %12.5g %12.5g %12.5g %7d %9.2f %-8s %-20s %3d %10lld\n", s.key.n,
+    if (s.key.realization > 0) dirs += " r" + std::to_string(s.key.realization);
+    std::printf("%8u %-11s %-16s %12.5g %12.5g %12.5g %7d %9.2f %-8s %-20s %3d %10lld\n", s.key.n,
                 dirs.c_str(), s.key.profile.c_str(), s.loss.total, s.loss.spectrum, s.loss.sw,
                 s.iterations, s.optimize_seconds, s.engine.c_str(), FormatTime(s.created_unix).c_str(),
                 s.algorithm_version, static_cast<long long>(s.bytes));

@@ -1,6 +1,8 @@
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "client/commands.h"
 #include "client/point_file.h"
@@ -24,22 +26,33 @@ struct GetOptions {
   std::vector<double> dirs;
   std::string out;
   bool quiet = false;
+  int64_t realization = 0;
+  // -m M: realizations r .. r + M - 1 in one batch call, as a multi-set file.
+  std::optional<int64_t> sets;
   ServiceOptions service;
 };
 
-int RunGet(const GetOptions& o) {
-  if (o.dirs.size() > 2) {
-    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
-                                         std::to_string(o.dirs.size())));
-  }
-  auto client = Connect(o.service);
-  if (!client.ok()) return Usage(client.status());
+// What a text file records about a served set, one '#' line or two.
+std::string Comment(const SetInfo& i) {
+  char comment[768];
+  std::snprintf(comment, sizeof(comment),
+                "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s "
+                "realization=%u\nswap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d "
+                "engine=%s seed=%llu algorithm_version=%d",
+                i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
+                i.inverted, i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
+                static_cast<unsigned long long>(i.seed), i.algorithm_version);
+  return comment;
+}
 
-  // The streaming call shows queue position and optimization progress; a
-  // cache hit arrives as its only message.
+// One set through the streaming call, which shows queue position and
+// optimization progress (a cache hit arrives as its only message).
+StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
   Progress progress("optimize");
   bool shown = false;
-  auto set = (*client)->WatchAlignedSet(static_cast<uint32_t>(o.n), o.dirs, [&](const WatchUpdate& u) {
+  const SetRequest request{static_cast<uint32_t>(o.n), o.dirs,
+                           static_cast<uint32_t>(o.realization)};
+  auto set = client.WatchAlignedSet(request, [&](const WatchUpdate& u) {
     if (o.quiet) return;
     shown = true;
     if (u.queued) {
@@ -50,33 +63,93 @@ int RunGet(const GetOptions& o) {
     std::snprintf(detail, sizeof(detail), "loss %.5g lr %.2g", u.loss, u.learning_rate);
     progress.Update(u.iteration, u.max_iterations, detail);
   });
-  if (!set.ok()) return Failure(set.status());
-  if (shown) progress.Finish("");
+  if (set.ok() && shown) progress.Finish("");
+  return set;
+}
 
-  const SetInfo& i = set->info;
-  char comment[768];
-  std::snprintf(comment, sizeof(comment),
-                "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s\n"
-                "swap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s "
-                "algorithm_version=%d",
-                i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.swapped, i.inverted,
-                i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
-                i.algorithm_version);
-  if (Status s = WritePointFile(o.out, set->points, comment); !s.ok()) return Failure(s);
+// Several realizations in one batch call: the server optimizes the missing
+// ones in parallel.
+StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOptions& o) {
+  std::vector<SetRequest> items;
+  for (int64_t i = 0; i < *o.sets; ++i) {
+    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i)});
+  }
+  if (!o.quiet) {
+    std::fprintf(stderr, "alignset get: %lld realizations (%lld..%lld) in one call\n",
+                 static_cast<long long>(*o.sets), static_cast<long long>(o.realization),
+                 static_cast<long long>(o.realization + *o.sets - 1));
+  }
+  auto batch = client.GetAlignedSets(items);
+  if (!batch.ok()) return batch.status();
+  std::vector<AlignedSet> sets;
+  for (size_t i = 0; i < batch->size(); ++i) {
+    BatchItem& item = (*batch)[i];
+    if (!item.status.ok()) {
+      return Status(item.status.code() == Status::Code::kInvalidArgument
+                        ? Status::InvalidArgument("realization " + std::to_string(items[i].realization) +
+                                                  ": " + item.status.message())
+                        : Status::Unavailable("realization " + std::to_string(items[i].realization) +
+                                              ": " + item.status.message()));
+    }
+    sets.push_back(std::move(item.set));
+  }
+  return sets;
+}
+
+int RunGet(const GetOptions& o) {
+  if (o.dirs.size() > 2) {
+    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
+                                         std::to_string(o.dirs.size())));
+  }
+  if (o.sets && o.realization + *o.sets - 1 > SetRequest::kMaxRealization) {
+    return Usage(Status::InvalidArgument(
+        "realizations " + std::to_string(o.realization) + ".." +
+        std::to_string(o.realization + *o.sets - 1) + " go past the maximum of " +
+        std::to_string(SetRequest::kMaxRealization)));
+  }
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
+
+  std::vector<AlignedSet> sets;
+  if (o.sets) {
+    auto many = GetMany(**client, o);
+    if (!many.ok()) return Failure(many.status());
+    sets = std::move(many).value();
+  } else {
+    auto one = WatchOne(**client, o);
+    if (!one.ok()) return Failure(one.status());
+    sets.push_back(std::move(one).value());
+  }
+
+  std::string comment;
+  std::vector<PointSet> points;
+  for (const AlignedSet& s : sets) {
+    comment += (comment.empty() ? "" : "\n") + Comment(s.info);
+    points.push_back(s.points);
+  }
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
 
   FILE* report = ReportStreamFor(o.out);
+  const SetInfo& i = sets[0].info;
   std::fprintf(report, "N              %u\n", i.n);
   std::fprintf(report, "directions     0, 90, %s (served; deg, spectral = edge normal)\n",
-              Join(i.served_deg).c_str());
+               Join(i.served_deg).c_str());
   std::fprintf(report, "canonical key  %s (index %llu)\n", i.key_text.c_str(),
-              static_cast<unsigned long long>(i.key_index));
+               static_cast<unsigned long long>(i.key_index));
   std::fprintf(report, "alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
-              i.inverted ? "yes" : "no");
-  std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", i.loss_total, i.loss_spectrum,
-              i.loss_sw);
-  std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n", i.iterations,
-              i.optimize_seconds, i.engine.c_str(), i.profile.c_str());
-  std::fprintf(report, "from cache     %s\n", i.from_cache ? "yes" : "no");
+               i.inverted ? "yes" : "no");
+  for (const AlignedSet& s : sets) {
+    const SetInfo& si = s.info;
+    if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
+                             static_cast<unsigned long long>(si.seed));
+    std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
+                 si.loss_spectrum, si.loss_sw);
+    std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n",
+                 si.iterations, si.optimize_seconds, si.engine.c_str(), si.profile.c_str());
+    std::fprintf(report, "from cache     %s\n", si.from_cache ? "yes" : "no");
+  }
   std::fprintf(report, "wrote          %s\n", o.out.c_str());
   return kExitOk;
 }
@@ -93,7 +166,15 @@ void AddGetCommand(CLI::App& app) {
       ->required()
       ->allow_extra_args(false)
       ->check(FiniteNumber());
-  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")->required();
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
+      ->required();
+  c->add_option("-r,--realization", o->realization,
+                "which of the key's independent sets (0 .. 63; 0: the key's first)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, SetRequest::kMaxRealization));
+  c->add_option("-m,--sets", o->sets,
+                "several realizations, R .. R+M-1, in one call: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

@@ -33,12 +33,14 @@ struct PrecomputeOptions {
   std::string space;  // empty: keys when --key is given, else 1dir
   std::vector<std::string> keys;
   std::string shard;
+  int64_t realizations = 1;
   ServiceOptions service;
 };
 
 int RunPrecompute(const PrecomputeOptions& o) {
   PrecomputeSpec spec;
   for (int64_t n : o.n) spec.n.push_back(static_cast<uint32_t>(n));
+  spec.realizations = static_cast<uint32_t>(o.realizations);
   const std::string space = !o.space.empty() ? o.space : o.keys.empty() ? "1dir" : "keys";
   if (space == "1dir") {
     spec.space = 1;
@@ -109,6 +111,10 @@ void AddPrecomputeCommand(CLI::App& app) {
   c->add_option("--key", o->keys, "an explicit key DEG[,DEG], repeatable (with --space keys)")
       ->allow_extra_args(false);
   c->add_option("--shard", o->shard, "this run's shard i/M of the work items (0 <= i < M)");
+  c->add_option("-m,--realizations", o->realizations,
+                "realizations 0 .. R-1 of every key (each an independent set)")
+      ->capture_default_str()
+      ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }

@@ -9,11 +9,14 @@
 #include <sstream>
 
 #include "alignset/v1/alignset.grpc.pb.h"
+#include "core/optimize/realization.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
 namespace alignset {
 namespace {
 
+static_assert(SetRequest::kMaxRealization == kMaxRealization,
+              "the public header states the core's realization bound");
 static_assert(std::endian::native == std::endian::little,
               "the wire format is little-endian float64; add a byte swap for this host");
 
@@ -85,6 +88,7 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   i.learning_rate = md.parameters().learning_rate();
   i.sw_weight = md.parameters().sw_weight();
   i.seed = md.parameters().seed();
+  i.realization = md.key().realization();
   i.algorithm_version = md.parameters().algorithm_version();
   i.from_cache = md.from_cache();
   i.optimize_seconds = md.optimize_seconds();
@@ -220,10 +224,11 @@ StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOpt
 }
 
 namespace {
-v1::AlignedSetRequest MakeRequest(uint32_t n, const std::vector<double>& dirs) {
+v1::AlignedSetRequest MakeRequest(const SetRequest& r) {
   v1::AlignedSetRequest req;
-  req.set_n(n);
-  for (double d : dirs) req.add_directions_deg(d);
+  req.set_n(r.n);
+  for (double d : r.directions_deg) req.add_directions_deg(d);
+  req.set_realization(r.realization);
   return req;
 }
 
@@ -240,10 +245,15 @@ StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
 
 StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs,
                                                   const CallOptions& call) {
+  return GetAlignedSet(SetRequest{n, dirs, 0}, call);
+}
+
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(const SetRequest& request,
+                                                  const CallOptions& call) {
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, true, call);
   v1::AlignedSetResponse resp;
-  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs), &resp);
+  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(request), &resp);
   if (!s.ok()) return impl_->Fail(s);
   return FromResponse(&resp);
 }
@@ -282,7 +292,7 @@ StatusOr<std::vector<BatchItem>> ServiceClient::Impl::Batch(const v1::AlignedSet
 StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector<SetRequest>& items,
                                                                const CallOptions& call) {
   v1::AlignedSetsRequest req;
-  for (const SetRequest& r : items) *req.add_items() = MakeRequest(r.n, r.directions_deg);
+  for (const SetRequest& r : items) *req.add_items() = MakeRequest(r);
   auto out = impl_->Batch(req, call);
   if (out.ok() && out->size() != items.size()) {
     return Status::Internal("the server answered " + std::to_string(out->size()) + " items for " +
@@ -292,19 +302,27 @@ StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector
 }
 
 StatusOr<std::vector<BatchItem>> ServiceClient::GetOneDirectionSpace(uint32_t n,
+                                                                     uint32_t realization,
                                                                      const CallOptions& call) {
   v1::AlignedSetsRequest req;
   req.set_space(v1::ONE_DIRECTION);
   req.set_space_n(n);
+  req.set_space_realization(realization);
   return impl_->Batch(req, call);
 }
 
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     uint32_t n, const std::vector<double>& dirs,
     const std::function<void(const WatchUpdate&)>& on_update, const CallOptions& call) {
+  return WatchAlignedSet(SetRequest{n, dirs, 0}, on_update, call);
+}
+
+StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
+    const SetRequest& request, const std::function<void(const WatchUpdate&)>& on_update,
+    const CallOptions& call) {
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false, call);
-  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs));
+  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(request));
   v1::WatchEvent ev;
   std::optional<StatusOr<AlignedSet>> result;
   while (reader->Read(&ev)) {
@@ -352,6 +370,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   }
   req.set_shard_index(spec.shard_index);
   req.set_shard_count(spec.shard_count);
+  req.set_realizations(spec.realizations);
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->Precompute(&ctx, req);

@@ -60,6 +60,7 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
       BatchItemState item;
       item.request.set_n(req->space_n());
       item.request.add_directions_deg(CanonicalKeyAt(1, i).phi1);
+      item.request.set_realization(req->space_realization());
       items.push_back(std::move(item));
     }
   } else {
@@ -87,8 +88,13 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
       item.status = canon.status();
       continue;
     }
+    if (Status r = ValidateRealization(item.request.realization()); !r.ok()) {
+      metrics_->requests_invalid.fetch_add(1, std::memory_order_relaxed);
+      item.status = r;
+      continue;
+    }
     item.canon = *canon;
-    item.key = scheduler_->KeyFor(item.request.n(), canon->key);
+    item.key = scheduler_->KeyFor(item.request.n(), canon->key, item.request.realization());
     auto ticket = scheduler_->Acquire(item.key, Priority::kInteractive);
     if (!ticket.ok()) {
       item.status = ticket.status();

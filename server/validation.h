@@ -30,4 +30,9 @@ inline constexpr uint64_t kMaxBatchPoints = uint64_t{1} << 24;
 // INVALID_ARGUMENT for an empty batch or one beyond the bounds above.
 Status ValidateBatchSize(size_t items, uint64_t total_points);
 
+// A realization index: 0 .. kMaxRealization (core/optimize/realization.h).
+Status ValidateRealization(uint32_t realization);
+// A precompute realization count: 0 (meaning 1) .. kMaxRealization + 1.
+Status ValidateRealizationCount(uint32_t count);
+
 }  // namespace alignset::server

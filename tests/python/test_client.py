@@ -77,6 +77,18 @@ class ServerTest(unittest.TestCase):
         self.assertTrue(results[3].metadata.swapped and results[3].metadata.inverted)
         np.testing.assert_array_equal(results[0].points, self.client.get(64, 30))
 
+    def test_realizations(self):
+        r = self.client.get_realizations(64, 30, 3)
+        self.assertEqual(r.shape, (3, 64, 2))
+        self.assertFalse(np.array_equal(r[0], r[1]))
+        np.testing.assert_array_equal(r[0], self.client.get(64, 30))
+        s = self.client.get_set(64, 30, realization=2)
+        np.testing.assert_array_equal(s.points, r[2])
+        self.assertEqual(s.metadata.key.realization, 2)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(64, 30, realization=64)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+
     def test_one_direction_space(self):
         space = self.client.get_space(32)
         self.assertEqual(space.shape, (46, 32, 2))

@@ -74,7 +74,8 @@ struct SetInfo {
   int max_iterations = 0;
   double learning_rate = 0.0;
   double sw_weight = 0.0;
-  uint64_t seed = 0;
+  uint64_t seed = 0;  // this set's own seed (its realization's)
+  uint32_t realization = 0;
   int algorithm_version = 0;
   bool from_cache = false;
   double optimize_seconds = 0.0;
@@ -89,10 +90,14 @@ struct AlignedSet {
   std::string raw;
 };
 
-// One set of a batch request: N and one or two directions (degrees).
+// One set: N, one or two directions (degrees), and which of the key's
+// independent sets (realization 0 .. kMaxRealization; 0 is the set the key
+// always had, each other one is optimized from its own seed).
 struct SetRequest {
+  static constexpr uint32_t kMaxRealization = 63;
   uint32_t n = 0;
   std::vector<double> directions_deg;
+  uint32_t realization = 0;
 };
 
 // One answer of a batch: the set, or why this item has none. Items fail on
@@ -124,6 +129,9 @@ struct PrecomputeSpec {
   std::vector<std::vector<int>> keys;
   uint32_t shard_index = 0;
   uint32_t shard_count = 1;
+  // Realizations 0 .. realizations-1 of every key (at most
+  // SetRequest::kMaxRealization + 1).
+  uint32_t realizations = 1;
 };
 
 struct PrecomputeUpdate {
@@ -173,6 +181,8 @@ class ServiceClient {
   // spectral direction = the edge normal). Blocks until it exists.
   StatusOr<AlignedSet> GetAlignedSet(uint32_t n, const std::vector<double>& directions_deg,
                                      const CallOptions& call = {});
+  // The same for any realization.
+  StatusOr<AlignedSet> GetAlignedSet(const SetRequest& request, const CallOptions& call = {});
   // Many sets in one call, in request order, each with its own status; the
   // call itself fails only when the request as a whole is refused (more than
   // kMaxBatchItems items, ...), the server is unreachable or the deadline
@@ -181,10 +191,15 @@ class ServiceClient {
                                                   const CallOptions& call = {});
   // The whole one-direction space of N in one call: the 46 canonical sets,
   // directions 0, 1, ..., 45 degrees in that order (every other direction is
-  // one of them swapped and/or mirrored; see alignset.proto).
-  StatusOr<std::vector<BatchItem>> GetOneDirectionSpace(uint32_t n, const CallOptions& call = {});
+  // one of them swapped and/or mirrored; see alignset.proto), all of one
+  // realization.
+  StatusOr<std::vector<BatchItem>> GetOneDirectionSpace(uint32_t n, uint32_t realization = 0,
+                                                        const CallOptions& call = {});
   // Streams queue position and progress to `on_update`, then returns the set.
   StatusOr<AlignedSet> WatchAlignedSet(uint32_t n, const std::vector<double>& directions_deg,
+                                       const std::function<void(const WatchUpdate&)>& on_update,
+                                       const CallOptions& call = {});
+  StatusOr<AlignedSet> WatchAlignedSet(const SetRequest& request,
                                        const std::function<void(const WatchUpdate&)>& on_update,
                                        const CallOptions& call = {});
   // Streams progress until the request's items are all resolved.

@@ -44,8 +44,9 @@ def _directions(directions):
     return [float(d) for d in directions]
 
 
-def _request(n, directions):
-    return pb.AlignedSetRequest(n=int(n), directions_deg=_directions(directions))
+def _request(n, directions, realization=0):
+    return pb.AlignedSetRequest(n=int(n), directions_deg=_directions(directions),
+                                realization=int(realization))
 
 
 def _aligned(response):
@@ -90,27 +91,41 @@ class Client:
         except grpc.RpcError as e:
             raise AlignSetError(e.code(), e.details()) from None
 
-    def get_set(self, n, directions, timeout=None):
+    def get_set(self, n, directions, realization=0, timeout=None):
         """The aligned set for n points and one or two directions (degrees),
-        with its metadata. Blocks while the server optimizes a missing set."""
-        return _aligned(self._call(self._stub.GetAlignedSet, _request(n, directions), timeout))
+        with its metadata. `realization` (0..63) picks one of the key's
+        independent sets; 0 is the key's first. Blocks while the server
+        optimizes a missing set."""
+        request = _request(n, directions, realization)
+        return _aligned(self._call(self._stub.GetAlignedSet, request, timeout))
 
-    def get(self, n, directions, timeout=None):
+    def get(self, n, directions, realization=0, timeout=None):
         """The points alone: an (n, 2) float64 array."""
-        return self.get_set(n, directions, timeout).points
+        return self.get_set(n, directions, realization, timeout).points
 
     def get_many(self, items, timeout=None):
-        """Many sets in one call: items are (n, directions) pairs. Returns one
-        entry per item, in order: an AlignedSet, or the AlignSetError of that
-        item (not raised: the other items stand)."""
-        request = pb.AlignedSetsRequest(items=[_request(n, d) for n, d in items])
+        """Many sets in one call: items are (n, directions) or (n, directions,
+        realization) tuples. Returns one entry per item, in order: an
+        AlignedSet, or the AlignSetError of that item (not raised: the other
+        items stand)."""
+        request = pb.AlignedSetsRequest(items=[_request(*item) for item in items])
         return self._batch(request, timeout)
 
-    def get_space(self, n, timeout=None):
+    def get_realizations(self, n, directions, count, timeout=None):
+        """Realizations 0..count-1 of one key as a (count, n, 2) array, in one
+        call (the server optimizes the missing ones in parallel)."""
+        results = self.get_many([(n, directions, r) for r in range(count)], timeout)
+        for r in results:
+            if isinstance(r, AlignSetError):
+                raise r
+        return np.stack([r.points for r in results])
+
+    def get_space(self, n, realization=0, timeout=None):
         """The 46 canonical one-direction sets of n points (directions 0..45
         degrees) as one (46, n, 2) array; every other direction is one of them
         swapped and / or mirrored."""
-        request = pb.AlignedSetsRequest(space=pb.ONE_DIRECTION, space_n=int(n))
+        request = pb.AlignedSetsRequest(space=pb.ONE_DIRECTION, space_n=int(n),
+                                        space_realization=int(realization))
         results = self._batch(request, timeout)
         for r in results:
             if isinstance(r, AlignSetError):
