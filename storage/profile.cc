@@ -93,3 +93,15 @@ std::string ProfileId(const FrequencyParams& params, const OptimizerOptions& opt
 }
 
 }  // namespace alignset::storage
+
+namespace alignset::storage {
+
+std::string VersionText(const std::string& program, const std::string& release) {
+  constexpr uint32_t kHintN = 4096;
+  constexpr uint64_t kDefaultSeed = 1;  // alignset-server --seed
+  return program + " " + release + "\nalgorithm version " + std::to_string(kAlgorithmVersion) +
+         "\nprofile " + ProfileId(DefaultFrequencyParams(kHintN), OptimizerOptions{}, kDefaultSeed) +
+         " (default settings, N = " + std::to_string(kHintN) + "; format alignset-profile-v1)";
+}
+
+}  // namespace alignset::storage
