@@ -5,8 +5,9 @@
 #include <map>
 #include <vector>
 
-#include "core/util/number_text.h"
 #include "core/optimize/optimizer.h"
+#include "core/util/number_text.h"
+#include "server/listen_address.h"
 
 namespace alignset::server {
 namespace {
@@ -38,7 +39,8 @@ std::function<Status(ServerConfig&, const std::string&)> StringFlag(std::string 
 
 const std::vector<Flag>& Flags() {
   static const std::vector<Flag> flags = {
-      {"listen", "ADDR      address to listen on (default 127.0.0.1:50051; port 0 picks one)",
+      {"listen", "ADDR      address to listen on: HOST:PORT, [IPV6]:PORT or unix:PATH\n"
+                 "                     (default 127.0.0.1:50051; port 0 picks one)",
        StringFlag(&ServerConfig::listen)},
       {"db", "PATH          SQLite cache (default $ALIGNSET_DATA_DIR or ~/.local/share/alignset)",
        StringFlag(&ServerConfig::db_path)},
@@ -143,6 +145,7 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
     return Status::InvalidArgument("--tls-cert and --tls-key go together");
   }
   if (config.listen.empty()) return Status::InvalidArgument("--listen is empty");
+  if (auto a = ParseListenAddress(config.listen, "--listen"); !a.ok()) return a.status();
   return config;
 }
 

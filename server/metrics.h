@@ -23,6 +23,8 @@ struct MetricsSnapshot {
   uint64_t optimizations_failed = 0;
   uint64_t shared_waits = 0;
   uint64_t rejected_queue_full = 0;
+  uint64_t requests_unauthenticated = 0;
+  uint64_t sets_not_stored = 0;
   uint32_t queue_length = 0;
   uint32_t running = 0;
   double optimize_seconds_total = 0.0;
@@ -49,6 +51,14 @@ class Metrics {
   std::atomic<uint64_t> optimizations_failed{0};
   std::atomic<uint64_t> shared_waits{0};
   std::atomic<uint64_t> rejected_queue_full{0};
+  // Calls refused for a missing or wrong bearer token; the request counters
+  // above count authorized calls only.
+  std::atomic<uint64_t> requests_unauthenticated{0};
+  // Sets optimized and served but not written to SQLite (read-only or full
+  // disk, damaged pages): each is recomputed after a restart.
+  std::atomic<uint64_t> sets_not_stored{0};
+  // False when the start-up write probe failed (SetCache::ProbeWrite).
+  std::atomic<bool> database_writable{true};
 
   void RecordOptimization(double seconds) {
     std::lock_guard<std::mutex> lock(mu_);
@@ -74,6 +84,8 @@ class Metrics {
     s.optimizations_failed = optimizations_failed.load();
     s.shared_waits = shared_waits.load();
     s.rejected_queue_full = rejected_queue_full.load();
+    s.requests_unauthenticated = requests_unauthenticated.load();
+    s.sets_not_stored = sets_not_stored.load();
     s.queue_length = queue_length;
     s.running = running;
     {

@@ -321,8 +321,11 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
     record.optimize_seconds = seconds;
     record.engine = engine->name();
     record.created_unix = static_cast<int64_t>(std::time(nullptr));
+    bool stored = true;
     if (Status put = cache_->Put(record); !put.ok()) {
       // The set is still good: serve it, but say loudly that it was not kept.
+      stored = false;
+      metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
       spdlog::error("cache write {}: {} (served, not stored)", job->name, put.message());
     }
     metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
@@ -330,7 +333,7 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
                  job->name, record.loss.total, record.loss.spectrum, record.loss.sw,
                  record.iterations, seconds);
-    entry = std::make_shared<const CanonicalEntry>(std::move(record));
+    entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
     lru_.Put(job->name, entry);
   }
   std::lock_guard<std::mutex> lock(mu_);

@@ -1,6 +1,5 @@
 #include "server/server.h"
 
-#include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
@@ -10,8 +9,11 @@
 #include <sstream>
 #include <thread>
 
+#include "server/listen_address.h"
+#include "server/reflection_service.h"
 #include "server/scheduler.h"
 #include "server/service.h"
+#include "server/tls_check.h"
 #include "storage/paths.h"
 
 namespace alignset::server {
@@ -58,6 +60,7 @@ struct ServerInstance::Impl {
   std::unique_ptr<storage::SetCache> cache;
   std::unique_ptr<Scheduler> scheduler;
   std::unique_ptr<AlignSetService> service;
+  std::unique_ptr<ReflectionService> reflection;
   std::unique_ptr<grpc::Server> server;
   int port = 0;
   bool stopped = false;
@@ -92,6 +95,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
     if (!cert.ok()) return cert.status();
     auto key = ReadFile(config.tls_key, "--tls-key");
     if (!key.ok()) return key.status();
+    if (Status s = CheckTlsKeyPair(*cert, *key, config.tls_cert, config.tls_key); !s.ok()) return s;
     grpc::SslServerCredentialsOptions ssl;
     ssl.pem_key_cert_pairs.push_back({*key, *cert});
     creds = grpc::SslServerCredentials(ssl);
@@ -100,6 +104,12 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   auto cache = storage::SetCache::Open(impl->db_path);
   if (!cache.ok()) return Status::Unavailable("cannot open the cache " + impl->db_path + ": " + cache.status().message());
   impl->cache = std::move(cache).value();
+  if (Status w = impl->cache->ProbeWrite(); !w.ok()) {
+    impl->metrics.database_writable.store(false);
+    spdlog::warn("the cache {} is not writable ({}): sets will be served but not stored, and "
+                 "optimized again after a restart",
+                 impl->db_path, w.message());
+  }
 
   Scheduler::Options so;
   so.workers = config.workers;
@@ -121,25 +131,43 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   impl->service = std::make_unique<AlignSetService>(config, impl->db_path, token, impl->cache.get(),
                                                     impl->scheduler.get(), &impl->metrics);
 
+  AlignSetService* service = impl->service.get();
+  impl->reflection = std::make_unique<ReflectionService>(
+      std::vector<std::string>{v1::AlignSet::service_full_name(), "grpc.health.v1.Health",
+                               "grpc.reflection.v1alpha.ServerReflection"},
+      [service](grpc::ServerContext* ctx) { return service->Authorize(ctx); });
+
   grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  // gRPC sets SO_REUSEPORT by default: a second server on the same address
+  // would start without error and take part of the traffic, and with port 0
+  // the listener it clones per poller binds a second, unreported port.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(config.listen, creds, &impl->port);
   builder.RegisterService(impl->service.get());
+  builder.RegisterService(impl->reflection.get());
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_request_bytes));
   builder.SetMaxSendMessageSize(-1);
   impl->server = builder.BuildAndStart();
   if (!impl->server || impl->port == 0) {
     impl->scheduler->Shutdown();
-    return Status::Unavailable("cannot listen on " + config.listen);
+    const std::string why = DescribeBindFailure(config.listen);
+    return Status::Unavailable("cannot listen on " + config.listen + (why.empty() ? "" : ": " + why));
   }
+  // The overall status ("") and the service's own name: probes and load
+  // balancers ask per service.
   impl->server->GetHealthCheckService()->SetServingStatus(true);
+  impl->server->GetHealthCheckService()->SetServingStatus(v1::AlignSet::service_full_name(), true);
   if (!config.port_file.empty()) {
     if (Status s = WritePortFile(config.port_file, impl->port); !s.ok()) {
       impl->server->Shutdown();
       impl->scheduler->Shutdown();
       return s;
     }
+  }
+  if (!token.empty() && config.tls_cert.empty()) {
+    spdlog::warn("--token-file without --tls-cert: the bearer token travels in clear text; "
+                 "serve TLS or keep the listener on a trusted network");
   }
   spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
                "max iterations {}{}{}",
@@ -162,6 +190,7 @@ void ServerInstance::Shutdown(double grace_seconds) {
   impl_->server->Shutdown(deadline);
   impl_->server->Wait();
   impl_->scheduler->Shutdown();  // joins workers: a write in progress completes
+  impl_->reflection.reset();
   impl_->service.reset();
   impl_->scheduler.reset();
   impl_->cache.reset();  // closes SQLite cleanly (WAL checkpoint)

@@ -8,8 +8,10 @@
 #include <thread>
 
 #include "core/spectral/frequency_set.h"
+#include "server/log_text.h"
 #include "server/samples.h"
 #include "server/validation.h"
+#include "server/watch_pacer.h"
 
 namespace alignset::server {
 namespace {
@@ -78,18 +80,27 @@ grpc::Status AlignSetService::Authorize(grpc::ServerContext* ctx) const {
   if (token_.empty()) return grpc::Status::OK;
   const auto& md = ctx->client_metadata();
   auto it = md.find("authorization");
+  const char* problem = nullptr;
   if (it == md.end()) {
-    spdlog::warn("unauthenticated call from {}: no authorization metadata", ctx->peer());
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
-                        "this server requires 'authorization: Bearer <token>'");
+    problem = "no authorization metadata";
+  } else {
+    const std::string value(it->second.data(), it->second.size());
+    const std::string prefix = "Bearer ";
+    if (value.rfind(prefix, 0) != 0 || !ConstantTimeEquals(value.substr(prefix.size()), token_)) {
+      problem = "wrong token";
+    }
   }
-  const std::string value(it->second.data(), it->second.size());
-  const std::string prefix = "Bearer ";
-  if (value.rfind(prefix, 0) != 0 || !ConstantTimeEquals(value.substr(prefix.size()), token_)) {
-    spdlog::warn("unauthenticated call from {}: wrong token", ctx->peer());
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "invalid bearer token");
+  if (problem == nullptr) return grpc::Status::OK;
+  // Counted apart from the request counters (which count authorized calls
+  // only); logged at the 1st, 2nd, 4th, 8th, ... so that a flood of them
+  // cannot flood the log.
+  const uint64_t count = metrics_->requests_unauthenticated.fetch_add(1, std::memory_order_relaxed) + 1;
+  if ((count & (count - 1)) == 0) {
+    spdlog::warn("unauthenticated call from {}: {} ({} so far)", Quoted(ctx->peer()), problem, count);
   }
-  return grpc::Status::OK;
+  return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
+                      it == md.end() ? "this server requires 'authorization: Bearer <token>'"
+                                     : "invalid bearer token");
 }
 
 grpc::Status AlignSetService::Invalid(const Status& s, const char* rpc) const {
@@ -139,13 +150,14 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   md->set_optimize_seconds(rec.optimize_seconds);
   md->set_iterations(rec.iterations);
   md->set_engine(rec.engine);
+  md->set_not_stored(!entry.stored());
 }
 
 grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
                                             const v1::AlignedSetRequest* req,
                                             v1::AlignedSetResponse* resp) {
-  metrics_->requests_get.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_get.fetch_add(1, std::memory_order_relaxed);
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return Invalid(canon.status(), "GetAlignedSet");
@@ -169,8 +181,8 @@ grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
 grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
                                               const v1::AlignedSetRequest* req,
                                               grpc::ServerWriter<v1::WatchEvent>* writer) {
-  metrics_->requests_watch.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_watch.fetch_add(1, std::memory_order_relaxed);
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return Invalid(canon.status(), "WatchAlignedSet");
@@ -179,37 +191,33 @@ grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
   if (!ticket.ok()) return ToGrpc(ticket.status());
   const Ticket& t = **ticket;
 
-  // Events at most every 100 ms (progress callbacks can be much faster);
-  // a change of state or queue position always goes out.
-  uint64_t version = ~uint64_t{0};
-  JobView::State last_state = JobView::State::kDone;
-  size_t last_position = SIZE_MAX;
-  Clock::time_point last_progress{};
+  // The pacer decides what goes out (server/watch_pacer.h); the wait is
+  // capped so that a client that leaves is noticed within 100 ms.
+  WatchPacer pacer;
+  uint64_t seen = ~uint64_t{0};
   for (;;) {
-    JobView v = t.WaitForChange(version, std::chrono::milliseconds(100));
+    const auto wait = std::min(pacer.Wait(Clock::now()), std::chrono::milliseconds(100));
+    JobView v = t.WaitForChange(seen, wait);
+    seen = v.version;
     if (v.state == JobView::State::kDone) break;
     if (ctx->IsCancelled()) return ClientGone(ctx);
     v1::WatchEvent ev;
-    bool send = false;
-    if (v.state == JobView::State::kQueued) {
-      if (last_state != v.state || v.queue_position != last_position) {
+    switch (pacer.Next(v, Clock::now())) {
+      case WatchPacer::Send::kNothing: continue;
+      case WatchPacer::Send::kQueued:
         ev.mutable_queued()->set_position(static_cast<uint32_t>(v.queue_position));
-        last_position = v.queue_position;
-        send = true;
+        break;
+      case WatchPacer::Send::kProgress: {
+        v1::Progress* p = ev.mutable_progress();
+        p->set_iteration(v.progress.iteration);
+        p->set_max_iterations(v.progress.max_iterations);
+        p->set_loss(v.progress.loss);
+        p->set_learning_rate(v.progress.learning_rate);
+        p->set_elapsed_seconds(v.elapsed_seconds);
+        break;
       }
-    } else if (last_state != v.state || Clock::now() - last_progress >= std::chrono::milliseconds(100)) {
-      v1::Progress* p = ev.mutable_progress();
-      p->set_iteration(v.progress.iteration);
-      p->set_max_iterations(v.progress.max_iterations);
-      p->set_loss(v.progress.loss);
-      p->set_learning_rate(v.progress.learning_rate);
-      p->set_elapsed_seconds(v.elapsed_seconds);
-      last_progress = Clock::now();
-      send = v.version != version;
     }
-    last_state = v.state;
-    version = v.version;
-    if (send && !writer->Write(ev)) return ClientGone(ctx);
+    if (!writer->Write(ev)) return ClientGone(ctx);
   }
   auto entry = t.Result();
   if (!entry.ok()) return ToGrpc(entry.status());
@@ -222,8 +230,8 @@ grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
 grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                                          const v1::PrecomputeRequest* req,
                                          grpc::ServerWriter<v1::PrecomputeProgress>* writer) {
-  metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
   if (req->n().empty()) return Invalid(Status::InvalidArgument("give at least one n"), "Precompute");
   if (req->n().size() > 64) {
     return Invalid(Status::InvalidArgument("at most 64 values of n per request"), "Precompute");
@@ -272,7 +280,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     }
   }
   spdlog::info("precompute: {} items (shard {}/{}) from {}", items.size(), req->shard_index(),
-               shards, ctx->peer());
+               shards, Quoted(ctx->peer()));
 
   const auto t0 = Clock::now();
   v1::PrecomputeProgress p;
@@ -374,8 +382,8 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
 
 grpc::Status AlignSetService::GetSamples(grpc::ServerContext* ctx, const v1::SamplesRequest* req,
                                          v1::SamplesResponse* resp) {
-  metrics_->requests_samples.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_samples.fetch_add(1, std::memory_order_relaxed);
   if (Status s = ValidatePointCount(req->n(), config_.max_n); !s.ok()) return Invalid(s, "GetSamples");
   std::optional<double> shear;
   if (req->has_shear_deg()) {
@@ -419,6 +427,8 @@ void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   out->set_optimize_seconds_max(s.optimize_seconds_max);
   out->set_rejected_queue_full(s.rejected_queue_full);
   out->set_uptime_seconds(s.uptime_seconds);
+  out->set_requests_unauthenticated(s.requests_unauthenticated);
+  out->set_sets_not_stored(s.sets_not_stored);
 }
 
 grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,

@@ -36,8 +36,12 @@ class AlignSetService final : public v1::AlignSet::Service {
   grpc::Status GetMetrics(grpc::ServerContext* ctx, const v1::MetricsRequest* req,
                           v1::MetricsResponse* resp) override;
 
- private:
+  // OK when no token is required or the call carries it; otherwise
+  // UNAUTHENTICATED, counted in requests_unauthenticated. Also guards the
+  // reflection service.
   grpc::Status Authorize(grpc::ServerContext* ctx) const;
+
+ private:
   grpc::Status Invalid(const Status& s, const char* rpc) const;
   void FillMetrics(v1::MetricsResponse* out) const;
   void FillKey(const storage::SetKey& key, v1::CanonicalKey* out) const;

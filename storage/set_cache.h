@@ -119,6 +119,12 @@ class SetCache {
   virtual StatusOr<MergeReport> MergeFrom(const std::string& other_path) = 0;
   // Writes a consistent copy of this cache to `path` (which must not exist).
   virtual Status ExportTo(const std::string& path) = 0;
+  // Whether a write can be committed now: rewrites one header field with
+  // its own value in a committed transaction (no row changes). Fails when
+  // the file is read-only (permissions, a read-only file system, a format
+  // this SQLite may only read), locked past the busy timeout, or the disk is
+  // full.
+  virtual Status ProbeWrite() = 0;
 };
 
 }  // namespace alignset::storage

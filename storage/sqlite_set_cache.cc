@@ -347,6 +347,25 @@ class SqliteSetCache final : public SetCache {
     return FsyncPath(parent.string(), true);
   }
 
+  Status ProbeWrite() override {
+    if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
+    std::lock_guard<std::mutex> lock(mu_);
+    if (sqlite3_db_readonly(db_.get(), "main") == 1) {
+      return Status::InvalidArgument(path_ + " can only be opened read-only (file permissions, "
+                                     "a read-only file system, or a newer file format)");
+    }
+    auto tx = Transaction::Begin(db_, Transaction::Kind::kWrite);
+    if (!tx.ok()) return tx.status();
+    // user_version is not used by the schema (schema_version is a table):
+    // writing its own value back changes nothing but dirties page 1, so the
+    // commit really writes.
+    auto version = db_.QueryText("PRAGMA user_version");
+    if (!version.ok()) return version.status();
+    Status s = db_.Exec("PRAGMA user_version = " + *version);
+    if (!s.ok()) return s;
+    return tx->Commit();
+  }
+
  private:
   StatusOr<Db> OpenReader(const std::string& path) const {
     return Db::Open(path, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, options_.busy_timeout_ms);
