@@ -65,6 +65,19 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::seed, "seed", 0, INT64_MAX)},
       {"max-queue", "Q     optimizations allowed to wait (default 256)",
        IntFlag(&ServerConfig::max_queue, "max-queue", 1, 1000000)},
+      {"max-queue-per-client", "Q  optimizations one client (connection) may have waiting (default 64)",
+       IntFlag(&ServerConfig::max_queue_per_client, "max-queue-per-client", 1, 1000000)},
+      {"time-slice-ms", "T    a running optimization yields to another client's waiting work\n"
+                        "                     after T ms (default 500)",
+       IntFlag(&ServerConfig::time_slice_ms, "time-slice-ms", 0, 3600000)},
+      {"max-paused", "P      paused optimizations held in memory at once (default 16)",
+       IntFlag(&ServerConfig::max_paused, "max-paused", 0, 100000)},
+      {"max-waiting-calls", "W  GetAlignedSet/WatchAlignedSet calls that may wait at once (default 10000)",
+       IntFlag(&ServerConfig::max_waiting_calls, "max-waiting-calls", 1, 10000000)},
+      {"max-precompute-streams", "S  concurrent Precompute streams (default 4)",
+       IntFlag(&ServerConfig::max_precompute_streams, "max-precompute-streams", 1, 1024)},
+      {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
+       StringFlag(&ServerConfig::metrics_listen)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
        IntFlag(&ServerConfig::memory_cache_mb, "memory-cache-mb", 0, 1 << 20)},
       {"max-request-bytes", "B  largest request message (default 1048576)",
@@ -146,6 +159,11 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
   }
   if (config.listen.empty()) return Status::InvalidArgument("--listen is empty");
   if (auto a = ParseListenAddress(config.listen, "--listen"); !a.ok()) return a.status();
+  if (!config.metrics_listen.empty()) {
+    auto m = ParseListenAddress(config.metrics_listen, "--metrics-listen");
+    if (!m.ok()) return m.status();
+    if (m->unix_socket) return Status::InvalidArgument("--metrics-listen takes HOST:PORT");
+  }
   return config;
 }
 

@@ -122,6 +122,9 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   }
   so.engine = config.engine;
   so.max_queue = config.max_queue;
+  so.max_queue_per_client = config.max_queue_per_client;
+  so.time_slice = std::chrono::milliseconds(config.time_slice_ms);
+  so.max_paused = config.max_paused;
   so.optimizer.max_iterations = config.max_iterations;
   so.seed = config.seed;
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <memory>
 #include <string>
 
 #include "core/sampling/owen_sobol.h"
@@ -144,46 +146,34 @@ LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitr
   return t;
 }
 
-StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
-                                      const OptimizerOptions& options, SpectralEngine& engine,
-                                      const ProgressCallback& progress) {
-  if (Status s = ValidateProblem(problem); !s.ok()) return s;
-  if (Status s = ValidateOptions(options); !s.ok()) return s;
-
+// Everything the loop carries from one iteration to the next, kept between
+// slices. `trial`, `scratch` and `sw_grad` are overwritten before they are
+// read in every iteration, so they are dropped while the run is paused.
+struct OptimizerRun::State {
+  OptimizationProblem problem;
+  OptimizerOptions options;
   OptimizationResult result;
-  result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
-  const std::vector<double> dirs = AnisotropyDirections(problem.directions);
-  const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
-  result.frequency_count = k.size();
-  engine.SetFrequencies(k);
-  const SlicedWasserstein sw(problem.n, dirs);
+  std::vector<Frequency> k;
+  std::unique_ptr<SlicedWasserstein> sw;
+  double lr = 0.0;
+  double sw_weight = 0.0;
+  int max_iterations = 0;
+  double anneal_step = 1.0;
+  bool started = false;  // the start set is evaluated
+  bool over = false;     // finished or cancelled
 
-  double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
-  const double sw_weight = EffectiveSwWeight(options, problem.n);
-  const int max_iterations = EffectiveMaxIterations(
-      options, problem.n, static_cast<int>(problem.directions.size()));
-
-  // `accepted` is the state after the last accepted step; each step is tried
-  // in `trial`, and the two are swapped when it is accepted (no copies of
-  // the O(N) state per iteration).
   AdamState accepted;
-  accepted.x = OwenScrambledSobol(problem.n, problem.seed);
-  accepted.m.assign(problem.n, {0.0, 0.0});
-  accepted.v.assign(problem.n, {0.0, 0.0});
+  AdamState trial;
   SpectrumEvaluation scratch;
   std::vector<Point2> sw_grad;
-  EvaluateTotal(accepted.x, engine, sw, sw_weight, &scratch, &sw_grad, &accepted);
-  result.initial = accepted.loss;
-
-  AdamState trial;
-  PointSet best = accepted.x;
-  LossTerms best_loss = accepted.loss;
-  double stall_reference = best_loss.total;
+  PointSet best;
+  LossTerms best_loss;
+  double stall_reference = 0.0;
   int since_improvement = 0;
   StopReason reason = StopReason::kMaxIterations;
+  int it = 0;
 
-  auto report = [&](int iteration) {
-    if (!progress) return true;
+  ProgressInfo Info(int iteration) const {
     ProgressInfo info;
     info.iteration = iteration;
     info.max_iterations = max_iterations;
@@ -193,16 +183,77 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     info.best_loss = best_loss.total;
     info.learning_rate = lr;
     info.reverts = result.reverts;
-    return progress(info);
-  };
+    return info;
+  }
+};
 
-  const double anneal_step = std::pow(options.anneal_ratio, 1.0 / max_iterations);
-  int it = 0;
-  while (it < max_iterations) {
-    ++it;
-    lr *= anneal_step;
-    AdamStep(accepted, options, lr, &trial);
-    EvaluateTotal(trial.x, engine, sw, sw_weight, &scratch, &sw_grad, &trial);
+OptimizerRun::OptimizerRun(std::unique_ptr<State> state) : s_(std::move(state)) {}
+OptimizerRun::~OptimizerRun() = default;
+
+StatusOr<std::unique_ptr<OptimizerRun>> OptimizerRun::Create(const OptimizationProblem& problem,
+                                                             const OptimizerOptions& options) {
+  if (Status s = ValidateProblem(problem); !s.ok()) return s;
+  if (Status s = ValidateOptions(options); !s.ok()) return s;
+  auto st = std::make_unique<State>();
+  st->problem = problem;
+  st->options = options;
+  return std::unique_ptr<OptimizerRun>(new OptimizerRun(std::move(st)));
+}
+
+int OptimizerRun::iteration() const { return s_->it; }
+
+size_t OptimizerRun::HeldBytes() const {
+  const State& s = *s_;
+  const size_t points = s.accepted.x.capacity() + s.accepted.m.capacity() + s.accepted.v.capacity() +
+                        s.accepted.grad.capacity() + s.best.capacity() + s.trial.x.capacity() +
+                        s.trial.m.capacity() + s.trial.v.capacity() + s.trial.grad.capacity() +
+                        s.sw_grad.capacity() + s.scratch.gradient.capacity();
+  return points * sizeof(Point2) + s.k.capacity() * sizeof(Frequency) +
+         s.scratch.spectrum.capacity() * sizeof(std::complex<double>) +
+         (s.sw ? s.sw->directions().size() * s.problem.n * (sizeof(double) + sizeof(uint32_t)) : 0);
+}
+
+OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_holds_k,
+                                           const RunCallback& control) {
+  State& s = *s_;
+  if (s.over) return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
+  const OptimizerOptions& options = s.options;
+  if (!s.started) {
+    s.result.frequency_params =
+        s.problem.frequency_params.value_or(DefaultFrequencyParams(s.problem.n));
+    const std::vector<double> dirs = AnisotropyDirections(s.problem.directions);
+    s.k = BuildFrequencySet(s.result.frequency_params, dirs);
+    s.result.frequency_count = s.k.size();
+    engine.SetFrequencies(s.k);
+    s.sw = std::make_unique<SlicedWasserstein>(s.problem.n, dirs);
+    s.lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
+    s.sw_weight = EffectiveSwWeight(options, s.problem.n);
+    s.max_iterations = EffectiveMaxIterations(options, s.problem.n,
+                                              static_cast<int>(s.problem.directions.size()));
+    // `accepted` is the state after the last accepted step; each step is
+    // tried in `trial`, and the two are swapped when it is accepted (no
+    // copies of the O(N) state per iteration).
+    s.accepted.x = OwenScrambledSobol(s.problem.n, s.problem.seed);
+    s.accepted.m.assign(s.problem.n, {0.0, 0.0});
+    s.accepted.v.assign(s.problem.n, {0.0, 0.0});
+    EvaluateTotal(s.accepted.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &s.accepted);
+    s.result.initial = s.accepted.loss;
+    s.best = s.accepted.x;
+    s.best_loss = s.accepted.loss;
+    s.stall_reference = s.best_loss.total;
+    s.anneal_step = std::pow(options.anneal_ratio, 1.0 / s.max_iterations);
+    s.started = true;
+  } else if (!engine_holds_k) {
+    engine.SetFrequencies(s.k);
+  }
+
+  AdamState& accepted = s.accepted;
+  AdamState& trial = s.trial;
+  while (s.it < s.max_iterations) {
+    const int it = ++s.it;
+    s.lr *= s.anneal_step;
+    AdamStep(accepted, options, s.lr, &trial);
+    EvaluateTotal(trial.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &trial);
 
     const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
     const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
@@ -210,48 +261,76 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
     const bool diverged =
         !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
     if (diverged) {
-      lr /= options.revert_divisor;
-      ++result.reverts;
-      if (lr < options.min_learning_rate) {
-        reason = StopReason::kLearningRateFloor;
+      s.lr /= options.revert_divisor;
+      ++s.result.reverts;
+      if (s.lr < options.min_learning_rate) {
+        s.reason = StopReason::kLearningRateFloor;
         break;
       }
     } else {
       std::swap(accepted, trial);
-      if (accepted.loss.total < best_loss.total) {
-        best_loss = accepted.loss;
-        best = accepted.x;
+      if (accepted.loss.total < s.best_loss.total) {
+        s.best_loss = accepted.loss;
+        s.best = accepted.x;
       }
-      if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
-        stall_reference = best_loss.total;
-        since_improvement = 0;
-      } else if (++since_improvement >= options.stall_iterations) {
+      if (s.best_loss.total < (1.0 - options.stall_tolerance) * s.stall_reference) {
+        s.stall_reference = s.best_loss.total;
+        s.since_improvement = 0;
+      } else if (++s.since_improvement >= options.stall_iterations) {
         if (options.plateau_factor >= 1.0) {
-          reason = StopReason::kStalled;
+          s.reason = StopReason::kStalled;
           break;
         }
-        lr *= options.plateau_factor;
-        since_improvement = 0;
-        stall_reference = best_loss.total;
-        if (lr < options.min_learning_rate) {
-          reason = StopReason::kStalled;
+        s.lr *= options.plateau_factor;
+        s.since_improvement = 0;
+        s.stall_reference = s.best_loss.total;
+        if (s.lr < options.min_learning_rate) {
+          s.reason = StopReason::kStalled;
           break;
         }
       }
     }
-    if (options.progress_every > 0 && it % options.progress_every == 0 && !report(it)) {
-      reason = StopReason::kCancelled;
-      break;
+    if (options.progress_every > 0 && it % options.progress_every == 0 && control) {
+      const RunControl c = control(s.Info(it));
+      if (c == RunControl::kCancel) {
+        s.reason = StopReason::kCancelled;
+        break;
+      }
+      if (c == RunControl::kPause && it < s.max_iterations) {
+        // Drop what the next iteration overwrites anyway.
+        trial = AdamState();
+        s.scratch = SpectrumEvaluation();
+        s.sw_grad = std::vector<Point2>();
+        return Outcome::kPaused;
+      }
     }
   }
-  result.iterations = it;
-  if (reason != StopReason::kCancelled) report(it);
+  s.over = true;
+  s.result.iterations = s.it;
+  if (s.reason != StopReason::kCancelled && control) control(s.Info(s.it));
+  return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
+}
 
-  result.points = std::move(best);
-  result.final_loss = best_loss;
-  result.final_learning_rate = lr;
-  result.stop_reason = reason;
-  return result;
+OptimizationResult OptimizerRun::TakeResult() {
+  State& s = *s_;
+  s.result.points = std::move(s.best);
+  s.result.final_loss = s.best_loss;
+  s.result.final_learning_rate = s.lr;
+  s.result.stop_reason = s.reason;
+  return std::move(s.result);
+}
+
+StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
+                                      const OptimizerOptions& options, SpectralEngine& engine,
+                                      const ProgressCallback& progress) {
+  auto run = OptimizerRun::Create(problem, options);
+  if (!run.ok()) return run.status();
+  RunCallback control;
+  if (progress) {
+    control = [&](const ProgressInfo& p) { return progress(p) ? RunControl::kContinue : RunControl::kCancel; };
+  }
+  (*run)->Resume(engine, false, control);
+  return (*run)->TakeResult();
 }
 
 }  // namespace alignset
