@@ -47,16 +47,13 @@ void FillTable(const double* u, int valid, int lo, int count, double* re, double
   }
 }
 
-struct BlockTables {
-  std::vector<double> xr, xi, yr, yi;
-};
-
 }  // namespace
 
 DirectEngine::DirectEngine(int threads) : pool_(threads) {}
 
 void DirectEngine::SetFrequencies(const std::vector<Frequency>& k) {
   k_ = k;
+  weights_.clear();
   a_min_ = 0;
   a_max_ = 0;
   b_max_ = 0;
@@ -67,33 +64,47 @@ void DirectEngine::SetFrequencies(const std::vector<Frequency>& k) {
   }
 }
 
-void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+void DirectEngine::SetLossWeights(std::vector<double> weights) { weights_ = std::move(weights); }
+
+void DirectEngine::FillBlock(const PointSet& points, const double* strengths, size_t block,
+                             BlockTables* t) const {
   const size_t n = points.size();
-  const size_t nk = k_.size();
   const int a_count = a_max_ - a_min_ + 1;
   const int b_count = b_max_ + 1;
-  const size_t blocks = (n + kBlock - 1) / kBlock;
-
-  auto fill_block = [&](size_t block, BlockTables* t) {
-    double xs[kBlock], ys[kBlock];
-    const size_t first = block * kBlock;
-    const int valid = static_cast<int>(std::min<size_t>(kBlock, n - first));
+  double xs[kBlock], ys[kBlock];
+  const size_t first = block * kBlock;
+  const int valid = static_cast<int>(std::min<size_t>(kBlock, n - first));
+  for (int jj = 0; jj < valid; ++jj) {
+    xs[jj] = points[first + jj].x;
+    ys[jj] = points[first + jj].y;
+  }
+  t->xr.resize(static_cast<size_t>(a_count) * kBlock);
+  t->xi.resize(t->xr.size());
+  t->yr.resize(static_cast<size_t>(b_count) * kBlock);
+  t->yi.resize(t->yr.size());
+  FillTable(xs, valid, a_min_, a_count, t->xr.data(), t->xi.data());
+  FillTable(ys, valid, 0, b_count, t->yr.data(), t->yi.data());
+  if (strengths == nullptr) return;
+  for (int row = 0; row < a_count; ++row) {
     for (int jj = 0; jj < valid; ++jj) {
-      xs[jj] = points[first + jj].x;
-      ys[jj] = points[first + jj].y;
+      t->xr[static_cast<size_t>(row) * kBlock + jj] *= strengths[first + jj];
+      t->xi[static_cast<size_t>(row) * kBlock + jj] *= strengths[first + jj];
     }
-    t->xr.resize(static_cast<size_t>(a_count) * kBlock);
-    t->xi.resize(t->xr.size());
-    t->yr.resize(static_cast<size_t>(b_count) * kBlock);
-    t->yi.resize(t->yr.size());
-    FillTable(xs, valid, a_min_, a_count, t->xr.data(), t->xi.data());
-    FillTable(ys, valid, 0, b_count, t->yr.data(), t->yi.data());
-  };
+  }
+}
 
-  // Pass 1 (type 1): the blocks are cut into a fixed number of chunks, each
-  // summed into its own partial spectrum, and the partials are added in
-  // order. The chunking does not depend on the thread count, so the result is
-  // bit-identical whatever the number of threads.
+void DirectEngine::Spectrum(const PointSet& points, const double* strengths,
+                            std::vector<std::complex<double>>* spectrum) {
+  const size_t n = points.size();
+  const size_t nk = k_.size();
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  spectrum->assign(nk, {0.0, 0.0});
+  if (n == 0 || nk == 0) return;
+
+  // The blocks are cut into a fixed number of chunks, each summed into its
+  // own partial spectrum, and the partials are added in order. The chunking
+  // does not depend on the thread count, so the result is bit-identical
+  // whatever the number of threads.
   const size_t chunks = std::min<size_t>(blocks, kChunks);
   std::vector<std::vector<double>> partial(chunks, std::vector<double>(2 * nk, 0.0));
   pool_.ParallelFor(chunks, [&](size_t chunk_begin, size_t chunk_end, int) {
@@ -103,7 +114,7 @@ void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, Spectrum
     size_t begin, end;
     ChunkBounds(blocks, static_cast<int>(chunk), static_cast<int>(chunks), &begin, &end);
     for (size_t block = begin; block < end; ++block) {
-      fill_block(block, &t);
+      FillBlock(points, strengths, block, &t);
       for (size_t q = 0; q < nk; ++q) {
         const double* xr = &t.xr[static_cast<size_t>(k_[q].a - a_min_) * kBlock];
         const double* xi = &t.xi[static_cast<size_t>(k_[q].a - a_min_) * kBlock];
@@ -120,17 +131,32 @@ void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, Spectrum
     }
    }
   });
-
-  out->spectrum.assign(nk, {0.0, 0.0});
-  double power = 0.0;
   for (size_t q = 0; q < nk; ++q) {
     double re = 0.0, im = 0.0;
     for (size_t c = 0; c < chunks; ++c) {
       re += partial[c][2 * q];
       im += partial[c][2 * q + 1];
     }
-    out->spectrum[q] = {re, im};
-    power += re * re + im * im;
+    (*spectrum)[q] = {re, im};
+  }
+}
+
+void DirectEngine::EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                                    std::vector<std::complex<double>>* spectrum) {
+  Spectrum(points, strengths.data(), spectrum);
+}
+
+void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+  const size_t n = points.size();
+  const size_t nk = k_.size();
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  const bool weighted = !weights_.empty();
+
+  Spectrum(points, nullptr, &out->spectrum);
+  double power = 0.0;
+  for (size_t q = 0; q < nk; ++q) {
+    const double p = std::norm(out->spectrum[q]);
+    power += weighted ? weights_[q] * p : p;
   }
   const double dn = static_cast<double>(std::max<size_t>(n, 1));
   out->loss = nk == 0 ? 0.0 : power / (dn * static_cast<double>(nk));
@@ -148,10 +174,11 @@ void DirectEngine::Evaluate(const PointSet& points, bool with_gradient, Spectrum
   pool_.ParallelFor(blocks, [&](size_t begin, size_t end, int) {
     BlockTables t;
     for (size_t block = begin; block < end; ++block) {
-      fill_block(block, &t);
+      FillBlock(points, nullptr, block, &t);
       double gx[kBlock] = {}, gy[kBlock] = {};
       for (size_t q = 0; q < nk; ++q) {
-        const double cr = out->spectrum[q].real(), ci = -out->spectrum[q].imag();
+        const double wq = weighted ? weights_[q] : 1.0;
+        const double cr = wq * out->spectrum[q].real(), ci = -wq * out->spectrum[q].imag();
         const double fa = k_[q].a, fb = k_[q].b;
         const double* xr = &t.xr[static_cast<size_t>(k_[q].a - a_min_) * kBlock];
         const double* xi = &t.xi[static_cast<size_t>(k_[q].a - a_min_) * kBlock];

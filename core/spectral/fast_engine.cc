@@ -22,8 +22,11 @@ size_t FastEngine::grid_cells() const {
   return cells;
 }
 
+void FastEngine::SetLossWeights(std::vector<double> weights) { weights_ = std::move(weights); }
+
 void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
   k_ = k;
+  weights_.clear();
   grids_.clear();
   grid_of_.assign(k_.size(), 0);
   w1_of_.assign(k_.size(), 0);
@@ -97,22 +100,18 @@ void FastEngine::RunOverGrids(size_t count,
   });
 }
 
-void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+void FastEngine::TypeOne(const PointSet& points, const double* strengths, bool keep_allowed,
+                         std::vector<std::complex<double>>* spectrum) {
   const size_t n = points.size();
   const size_t nk = k_.size();
-  out->spectrum.resize(nk);
-  out->gradient.clear();
-  out->loss = 0.0;
-  if (nk == 0 || n == 0) {
-    std::fill(out->spectrum.begin(), out->spectrum.end(), std::complex<double>(0.0));
-    if (with_gradient) out->gradient.assign(n, {0.0, 0.0});
-    return;
-  }
-
-  // Type 1. Every stage is one parallel loop across all grids.
+  // Every stage is one parallel loop across all grids.
   const size_t w = static_cast<size_t>(kernel_.width());
-  const bool keep = n * grids_.size() * 2 * w * sizeof(double) <= weight_budget_bytes_;
-  for (Piece& p : grids_) p.grid->Resize(n, keep);
+  const bool keep =
+      keep_allowed && n * grids_.size() * 2 * w * sizeof(double) <= weight_budget_bytes_;
+  for (Piece& p : grids_) {
+    p.grid->Resize(n, keep);
+    p.grid->SetStrengths(strengths);
+  }
   pool_.ParallelFor(n, [&](size_t begin, size_t end, int) {
     for (Piece& p : grids_) p.grid->MapPoints(points, begin, end);
   });
@@ -143,13 +142,44 @@ void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEv
   pool_.ParallelFor(grids_.size(), [&](size_t begin, size_t end, int) {
     for (size_t g = begin; g < end; ++g) grids_[g].grid->FinishSpread();
   });
+  for (Piece& p : grids_) p.grid->SetStrengths(nullptr);
+  spectrum->resize(nk);
   pool_.ParallelFor(nk, [&](size_t begin, size_t end, int) {
     for (size_t i = begin; i < end; ++i) {
-      out->spectrum[i] = grids_[grid_of_[i]].grid->Mode(w1_of_[i], w2_of_[i]);
+      (*spectrum)[i] = grids_[grid_of_[i]].grid->Mode(w1_of_[i], w2_of_[i]);
     }
   });
+}
+
+void FastEngine::EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                                  std::vector<std::complex<double>>* spectrum) {
+  if (k_.empty() || points.empty()) {
+    spectrum->assign(k_.size(), std::complex<double>(0.0));
+    return;
+  }
+  // Kept weights would carry the strengths; no type-2 pass follows here.
+  TypeOne(points, strengths.data(), /*keep_allowed=*/false, spectrum);
+}
+
+void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+  const size_t n = points.size();
+  const size_t nk = k_.size();
+  out->spectrum.resize(nk);
+  out->gradient.clear();
+  out->loss = 0.0;
+  if (nk == 0 || n == 0) {
+    std::fill(out->spectrum.begin(), out->spectrum.end(), std::complex<double>(0.0));
+    if (with_gradient) out->gradient.assign(n, {0.0, 0.0});
+    return;
+  }
+
+  TypeOne(points, nullptr, /*keep_allowed=*/true, &out->spectrum);
+  const bool weighted = !weights_.empty();
   double power = 0.0;
-  for (const std::complex<double>& f : out->spectrum) power += std::norm(f);
+  for (size_t i = 0; i < nk; ++i) {
+    const double p = std::norm(out->spectrum[i]);
+    power += weighted ? weights_[i] * p : p;
+  }
   const double dn = static_cast<double>(n);
   out->loss = power / (dn * static_cast<double>(nk));
   if (!with_gradient) return;
@@ -165,7 +195,9 @@ void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEv
       p.grid->ClearCoefficients();
       for (size_t i = 0; i < p.members.size(); ++i) {
         const Frequency& v = k_[p.members[i]];
-        const std::complex<double> f = out->spectrum[p.members[i]];
+        const std::complex<double> f =
+            weighted ? weights_[p.members[i]] * out->spectrum[p.members[i]]
+                     : out->spectrum[p.members[i]];
         const std::complex<double> dir(v.a, v.b);
         p.grid->AddCoefficient(p.w1[i], p.w2[i], dir * std::conj(f));
         p.grid->AddCoefficient(-p.w1[i], -p.w2[i], -dir * f);

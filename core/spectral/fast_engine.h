@@ -50,7 +50,10 @@ class FastEngine final : public SpectralEngine {
   ~FastEngine() override;
   std::string name() const override { return "fast"; }
   void SetFrequencies(const std::vector<Frequency>& k) override;
+  void SetLossWeights(std::vector<double> weights) override;
   void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) override;
+  void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                        std::vector<std::complex<double>>* spectrum) override;
 
   // Introspection for tests and benchmarks.
   int kernel_width() const { return kernel_.width(); }
@@ -65,6 +68,10 @@ class FastEngine final : public SpectralEngine {
     std::vector<int32_t> w1, w2;          // their modes in the grid's basis
   };
 
+  // The type-1 pass into `spectrum` (strengths: nullptr for all 1); keeps
+  // the kernel weights for a type-2 pass when they fit and `keep_allowed`.
+  void TypeOne(const PointSet& points, const double* strengths, bool keep_allowed,
+               std::vector<std::complex<double>>* spectrum);
   // Runs fn(job, worker) for jobs [0, weights.size()), each worker taking a
   // contiguous run of jobs of about equal total weight.
   void RunBalanced(const std::vector<size_t>& weights, const std::function<void(size_t, int)>& fn);
@@ -76,6 +83,7 @@ class FastEngine final : public SpectralEngine {
   EsKernel kernel_;
   size_t weight_budget_bytes_;
   std::vector<Frequency> k_;
+  std::vector<double> weights_;  // loss weights over K; empty: all 1
   std::vector<Piece> grids_;
   // Per entry of K: its grid and mode (for the read-out in one loop).
   std::vector<uint32_t> grid_of_;

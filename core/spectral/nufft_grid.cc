@@ -144,6 +144,16 @@ void NufftGrid::ComputeWeights(size_t begin, size_t end) {
                  &k1_[begin * w], &row_[begin]);
   loops_.weights(kernel_.coefficients(), kernel_.degree(), width_, &x2_[begin], end - begin, n2_,
                  &k2_[begin * w], &col_[begin]);
+  if (strengths_ != nullptr) ApplyStrengths(begin, end, &k1_[begin * w]);
+}
+
+void NufftGrid::ApplyStrengths(size_t begin, size_t end, double* k1) const {
+  const size_t w = static_cast<size_t>(width_);
+  for (size_t pos = begin; pos < end; ++pos) {
+    const double f = strengths_[order_[pos]];
+    double* row = k1 + (pos - begin) * w;
+    for (size_t t = 0; t < w; ++t) row[t] *= f;
+  }
 }
 
 void NufftGrid::BlockWeights(size_t begin, size_t end, Scratch* scratch) const {
@@ -169,6 +179,7 @@ void NufftGrid::SpreadRange(size_t begin, size_t end, Scratch* scratch) {
   for (size_t b = begin; b < end; b += kScratchBlock) {
     const size_t e = std::min(end, b + kScratchBlock);
     BlockWeights(b, e, scratch);
+    if (strengths_ != nullptr) ApplyStrengths(b, e, scratch->k1.data());
     loops_.spread(spread_.data(), stride_, width_, scratch->k1.data(), scratch->k2.data(),
                   scratch->row.data(), scratch->col.data(), e - b);
   }

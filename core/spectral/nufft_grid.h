@@ -21,7 +21,8 @@ int NufftGridSize(int64_t m, const EsKernel& kernel);
 // One NUFFT grid: the modes |w1| <= m1, |w2| <= m2 of the points mapped
 // into a lattice basis, u = (p.s, q.s) mod 1.
 //
-//   type 1:  Mode(w) = sum_j exp(-2 pi i w.u_j)                (unit strengths)
+//   type 1:  Mode(w) = sum_j f_j exp(-2 pi i w.u_j)   (real strengths f_j,
+//                                                       1 unless SetStrengths)
 //   type 2:  sum_w c(w) exp(-2 pi i w.u_j)   for every point j
 //
 // The grid does no threading itself: its work comes in stages over ranges
@@ -58,6 +59,10 @@ class NufftGrid {
 
   // Stage 1: sizes the per-point arrays (serial) ...
   void Resize(size_t count, bool keep_weights);
+  // Real strengths of the next type-1 pass, by point index (nullptr: all
+  // 1). Kept weights then carry the strengths, so a type-2 pass must not
+  // follow a weighted type-1 pass without a new Resize / ComputeWeights.
+  void SetStrengths(const double* by_point) { strengths_ = by_point; }
   // ... and maps points [begin, end) (any ranges, in parallel).
   void MapPoints(const PointSet& points, size_t begin, size_t end);
   // Stage 2 (one call per grid): stable counting sort into slabs; clears
@@ -88,6 +93,9 @@ class NufftGrid {
   // Weights of sorted positions [begin, end) into scratch (at most
   // kScratchBlock).
   void BlockWeights(size_t begin, size_t end, Scratch* scratch) const;
+  // Scales the first-axis weights k1[(pos - begin) * width ...] of sorted
+  // positions [begin, end) by their points' strengths.
+  void ApplyStrengths(size_t begin, size_t end, double* k1) const;
 
   BasisBox box_;
   const EsKernel& kernel_;
@@ -100,6 +108,7 @@ class NufftGrid {
 
   size_t count_ = 0;
   bool keep_weights_ = false;
+  const double* strengths_ = nullptr;
   // Per point, in input order.
   std::vector<double> mapped1_, mapped2_;
   std::vector<uint16_t> slab_of_;

@@ -11,11 +11,14 @@
 
 namespace alignset {
 
-// What an engine computes for a point set S of N points over K:
+// What an engine computes for a point set S of N points over K, with loss
+// weights w_v (1 unless SetLossWeights gave others):
 //   F(v)   = sum_j exp(-2 pi i v.s_j)            (a type-1 NUFFT)
-//   loss   = mean over v in K of |F(v)|^2 / N     (L_Spec, the mean periodogram)
+//   loss   = (1/|K|) sum over v in K of w_v |F(v)|^2 / N
+//                                                 (L_Spec: with w = 1 the mean
+//                                                  periodogram)
 //   grad_j = d loss / d s_j
-//          = 4 pi / (N |K|) * sum_v v * Im(conj(F(v)) exp(-2 pi i v.s_j))
+//          = 4 pi / (N |K|) * sum_v w_v v * Im(conj(F(v)) exp(-2 pi i v.s_j))
 //                                                   (a type-2 NUFFT)
 struct SpectrumEvaluation {
   std::vector<std::complex<double>> spectrum;  // F over K, in K's order
@@ -31,10 +34,24 @@ class SpectralEngine {
   virtual std::string name() const = 0;
 
   // Binds the frequency set; engines precompute what depends on K only.
+  // The loss weights go back to 1.
   virtual void SetFrequencies(const std::vector<Frequency>& k) = 0;
+
+  // Per-frequency weights of the loss, in K's order (one per member of the
+  // bound K, finite and >= 0), or empty for all 1. They change the loss and
+  // its gradient, never F.
+  virtual void SetLossWeights(std::vector<double> weights) = 0;
 
   // Evaluates F and the loss at `points` (and the gradient if asked).
   virtual void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) = 0;
+
+  // F over K of points carrying real strengths,
+  //   F(v) = sum_j strengths[j] exp(-2 pi i v.s_j),
+  // the spectrum of a weighted sample (an integrand's samples, for direction
+  // estimation). strengths.size() == points.size(). Only F: no loss, no
+  // gradient.
+  virtual void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                                std::vector<std::complex<double>>* spectrum) = 0;
 };
 
 enum class EngineKind { kAuto, kDirect, kFast, kCuda };

@@ -45,9 +45,14 @@ class GatedEngine final : public SpectralEngine {
   explicit GatedEngine(std::shared_ptr<Gate> gate) : gate_(std::move(gate)), inner_(1) {}
   std::string name() const override { return "gated-direct"; }
   void SetFrequencies(const std::vector<Frequency>& k) override { inner_.SetFrequencies(k); }
+  void SetLossWeights(std::vector<double> w) override { inner_.SetLossWeights(std::move(w)); }
   void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) override {
     gate_->Pass();
     inner_.Evaluate(points, with_gradient, out);
+  }
+  void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                        std::vector<std::complex<double>>* spectrum) override {
+    inner_.EvaluateWeighted(points, strengths, spectrum);
   }
 
  private:

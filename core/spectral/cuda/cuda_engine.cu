@@ -25,11 +25,15 @@ __device__ inline void Phasor(uint64_t phase, double* c, double* s) {
   sincospi(half_turns, s, c);
 }
 
-// partial[chunk * nk + q] = sum over the chunk's points of exp(-2 pi i v_q.s).
+// partial[chunk * nk + q] = sum over the chunk's points of
+// f_j exp(-2 pi i v_q.s_j), with f_j = strengths[j], or 1 when strengths is
+// null.
 __global__ void SpectrumKernel(const int2* __restrict__ k, int nk,
-                               const ulonglong2* __restrict__ pts, int n,
+                               const ulonglong2* __restrict__ pts,
+                               const double* __restrict__ strengths, int n,
                                double2* __restrict__ partial) {
   __shared__ ulonglong2 tile[kThreads];
+  __shared__ double tile_f[kThreads];
   const int q = blockIdx.x * blockDim.x + threadIdx.x;
   const int chunk = blockIdx.y;
   const int begin = static_cast<int>(static_cast<int64_t>(n) * chunk / gridDim.y);
@@ -42,15 +46,18 @@ __global__ void SpectrumKernel(const int2* __restrict__ k, int nk,
   double re = 0.0, im = 0.0;
   for (int base = begin; base < end; base += kThreads) {
     const int j = base + threadIdx.x;
-    if (j < end) tile[threadIdx.x] = pts[j];
+    if (j < end) {
+      tile[threadIdx.x] = pts[j];
+      tile_f[threadIdx.x] = strengths != nullptr ? strengths[j] : 1.0;
+    }
     __syncthreads();
     const int count = min(kThreads, end - base);
     if (q < nk) {
       for (int t = 0; t < count; ++t) {
         double c, s;
         Phasor(a * tile[t].x + b * tile[t].y, &c, &s);
-        re += c;
-        im -= s;
+        re += tile_f[t] * c;
+        im -= tile_f[t] * s;
       }
     }
     __syncthreads();
@@ -141,6 +148,23 @@ class CudaEngine final : public SpectralEngine {
   void SetFrequencies(const std::vector<Frequency>& k) override {
     k_ = k;
     k_uploaded_ = false;
+    weights_.clear();
+  }
+
+  void SetLossWeights(std::vector<double> weights) override { weights_ = std::move(weights); }
+
+  void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
+                        std::vector<std::complex<double>>* spectrum) override {
+    const size_t nk = k_.size();
+    spectrum->assign(nk, {0.0, 0.0});
+    if (points.empty() || nk == 0) return;
+    std::vector<double2> f;
+    if (Spectrum(points, strengths.data(), &f) != cudaSuccess) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      spectrum->assign(nk, {nan, nan});
+      return;
+    }
+    for (size_t q = 0; q < nk; ++q) (*spectrum)[q] = {f[q].x, f[q].y};
   }
 
   // The interface has no error channel: a CUDA failure yields NaN, which
@@ -161,7 +185,10 @@ class CudaEngine final : public SpectralEngine {
   }
 
  private:
-  cudaError_t Run(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+  // F over K into `spectrum` (host), leaving it on the device too; null
+  // strengths mean 1.
+  cudaError_t Spectrum(const PointSet& points, const double* strengths,
+                       std::vector<double2>* spectrum) {
     const int n = static_cast<int>(points.size()), nk = static_cast<int>(k_.size());
     cudaError_t e = cudaSetDevice(device_);
     if (e != cudaSuccess) return e;
@@ -187,23 +214,50 @@ class CudaEngine final : public SpectralEngine {
                         cudaMemcpyHostToDevice)) != cudaSuccess) {
       return e;
     }
+    const double* strengths_dev = nullptr;
+    if (strengths != nullptr) {
+      if ((e = strengths_dev_.Reserve(n)) != cudaSuccess) return e;
+      if ((e = cudaMemcpy(strengths_dev_.get(), strengths, n * sizeof(double),
+                          cudaMemcpyHostToDevice)) != cudaSuccess) {
+        return e;
+      }
+      strengths_dev = strengths_dev_.get();
+    }
     const dim3 grid1((nk + kThreads - 1) / kThreads, chunks);
-    SpectrumKernel<<<grid1, kThreads>>>(k_dev_.get(), nk, pts_dev_.get(), n, partial_dev_.get());
+    SpectrumKernel<<<grid1, kThreads>>>(k_dev_.get(), nk, pts_dev_.get(), strengths_dev, n,
+                                        partial_dev_.get());
     ReduceKernel<<<(nk + kThreads - 1) / kThreads, kThreads>>>(partial_dev_.get(), nk, chunks,
                                                               spectrum_dev_.get());
     if ((e = cudaGetLastError()) != cudaSuccess) return e;
-    std::vector<double2> spectrum(nk);
-    if ((e = cudaMemcpy(spectrum.data(), spectrum_dev_.get(), nk * sizeof(double2),
-                        cudaMemcpyDeviceToHost)) != cudaSuccess) {
-      return e;
-    }
+    spectrum->resize(nk);
+    return cudaMemcpy(spectrum->data(), spectrum_dev_.get(), nk * sizeof(double2),
+                      cudaMemcpyDeviceToHost);
+  }
+
+  cudaError_t Run(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) {
+    const int n = static_cast<int>(points.size()), nk = static_cast<int>(k_.size());
+    std::vector<double2> spectrum;
+    cudaError_t e = Spectrum(points, nullptr, &spectrum);
+    if (e != cudaSuccess) return e;
+    const bool weighted = !weights_.empty();
     double power = 0.0;
     for (int q = 0; q < nk; ++q) {
       out->spectrum[q] = {spectrum[q].x, spectrum[q].y};
-      power += spectrum[q].x * spectrum[q].x + spectrum[q].y * spectrum[q].y;
+      const double p = spectrum[q].x * spectrum[q].x + spectrum[q].y * spectrum[q].y;
+      power += weighted ? weights_[q] * p : p;
     }
     out->loss = power / (static_cast<double>(n) * nk);
     if (!with_gradient) return cudaSuccess;
+    if (weighted) {
+      // The gradient sums w_v conj(F(v)) terms: hand it w F.
+      for (int q = 0; q < nk; ++q) {
+        spectrum[q] = make_double2(weights_[q] * spectrum[q].x, weights_[q] * spectrum[q].y);
+      }
+      if ((e = cudaMemcpy(spectrum_dev_.get(), spectrum.data(), nk * sizeof(double2),
+                          cudaMemcpyHostToDevice)) != cudaSuccess) {
+        return e;
+      }
+    }
 
     const double scale = 4.0 * kPiDouble / (static_cast<double>(n) * nk);
     if ((e = grad_dev_.Reserve(n)) != cudaSuccess) return e;
@@ -221,9 +275,11 @@ class CudaEngine final : public SpectralEngine {
 
   int device_;
   std::vector<Frequency> k_;
+  std::vector<double> weights_;  // loss weights; empty: all 1
   bool k_uploaded_ = false;
   DeviceBuffer<int2> k_dev_;
   DeviceBuffer<ulonglong2> pts_dev_;
+  DeviceBuffer<double> strengths_dev_;
   DeviceBuffer<double2> partial_dev_;
   DeviceBuffer<double2> spectrum_dev_;
   DeviceBuffer<double2> grad_dev_;

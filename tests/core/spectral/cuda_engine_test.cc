@@ -82,6 +82,34 @@ TEST(CudaEngineTest, MatchesDirect) {
   }
 }
 
+TEST(CudaEngineTest, LossWeightsAndStrengthsMatchDirect) {
+  std::string reason;
+  auto cuda = CudaOrReason(&reason);
+  if (!cuda) GTEST_SKIP() << reason;
+  const uint32_t n = 2048;
+  const std::vector<Frequency> k =
+      BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({52.0}));
+  std::vector<double> w;
+  for (const Frequency& v : k) w.push_back(std::pow(std::hypot(v.a, v.b), -3.0));
+  const PointSet points = OwenScrambledSobol(n, 4);
+  std::vector<double> f;
+  for (const Point2& p : points) f.push_back(std::cos(6.0 * p.x) - p.y);
+  DirectEngine direct(2);
+  direct.SetFrequencies(k);
+  cuda->SetFrequencies(k);
+  direct.SetLossWeights(w);
+  cuda->SetLossWeights(w);
+  SpectrumEvaluation want, got;
+  direct.Evaluate(points, true, &want);
+  cuda->Evaluate(points, true, &got);
+  EXPECT_LT(RelativeError(got.gradient, want.gradient), 1e-9);
+  EXPECT_NEAR(got.loss, want.loss, 1e-9 * want.loss);
+  std::vector<std::complex<double>> fw, fg;
+  direct.EvaluateWeighted(points, f, &fw);
+  cuda->EvaluateWeighted(points, f, &fg);
+  EXPECT_LT(RelativeError(fg, fw), 1e-9);
+}
+
 TEST(CudaEngineTest, EmptyInputsAndDeterminism) {
   std::string reason;
   auto cuda = CudaOrReason(&reason);

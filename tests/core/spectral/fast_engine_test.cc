@@ -201,6 +201,60 @@ TEST(FastEngineTest, ReusesPlansAcrossPointSetsAndSizes) {
   }
 }
 
+TEST(FastEngineTest, LossWeightsMatchTheDirectEngine) {
+  const std::vector<Frequency> k =
+      BuildFrequencySet(DefaultFrequencyParams(1500), AnisotropyDirections({38.0}));
+  std::vector<double> w;
+  for (const Frequency& v : k) w.push_back(std::pow(std::hypot(v.a, v.b), -2.5));
+  const PointSet points = OwenScrambledSobol(1500, 6);
+  for (size_t budget : {FastEngine::kWeightBudgetBytes, size_t{0}}) {
+    SCOPED_TRACE("weight budget " + std::to_string(budget));
+    DirectEngine direct(2);
+    FastEngine fast(2, FastEngine::kDefaultTolerance, budget);
+    direct.SetFrequencies(k);
+    fast.SetFrequencies(k);
+    direct.SetLossWeights(w);
+    fast.SetLossWeights(w);
+    SpectrumEvaluation want, got, unweighted;
+    direct.Evaluate(points, true, &want);
+    fast.Evaluate(points, true, &got);
+    EXPECT_LT(RelativeError(got.gradient, want.gradient), kRequired);
+    EXPECT_LT(std::abs(got.loss - want.loss) / want.loss, kRequired);
+    // SetFrequencies resets the weights to 1.
+    fast.SetFrequencies(k);
+    fast.Evaluate(points, true, &unweighted);
+    EXPECT_GT(std::abs(unweighted.loss - got.loss), 0.1 * got.loss);
+  }
+}
+
+TEST(FastEngineTest, WeightedSpectrumMatchesTheDirectEngine) {
+  // Disk frequencies only (direction estimation's kind of K) and a full K.
+  const std::vector<std::vector<Frequency>> sets = {
+      BuildFrequencySet({1, 1, 20}, {}),
+      BuildFrequencySet(DefaultFrequencyParams(900), AnisotropyDirections({71.0}))};
+  const PointSet points = WhiteNoise(900, 12);
+  std::vector<double> f;
+  for (const Point2& p : points) f.push_back(p.x + p.y > 1.0 ? 1.0 : -0.5 + p.x * p.y);
+  for (const auto& k : sets) {
+    for (size_t budget : {FastEngine::kWeightBudgetBytes, size_t{0}}) {
+      DirectEngine direct(2);
+      FastEngine fast(2, FastEngine::kDefaultTolerance, budget);
+      direct.SetFrequencies(k);
+      fast.SetFrequencies(k);
+      std::vector<std::complex<double>> want, got;
+      direct.EvaluateWeighted(points, f, &want);
+      fast.EvaluateWeighted(points, f, &got);
+      EXPECT_LT(RelativeError(got, want), kRequired) << "|K| " << k.size();
+      // A plain evaluation afterwards is unaffected by the strengths.
+      SpectrumEvaluation plain_fast, plain_direct;
+      fast.Evaluate(points, true, &plain_fast);
+      direct.Evaluate(points, true, &plain_direct);
+      EXPECT_LT(RelativeError(plain_fast.spectrum, plain_direct.spectrum), kRequired);
+      EXPECT_LT(RelativeError(plain_fast.gradient, plain_direct.gradient), kRequired);
+    }
+  }
+}
+
 TEST(FastEngineTest, EmptyInputs) {
   FastEngine fast(2);
   SpectrumEvaluation out;

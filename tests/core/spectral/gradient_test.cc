@@ -66,6 +66,57 @@ TEST(Gradient, SpectrumLossMatchesFiniteDifferences) {
   }
 }
 
+// Loss weights w_v (decaying like |v|^-3, as the optimizer's low-frequency
+// weighting does) change the loss and its gradient consistently.
+TEST(Gradient, WeightedSpectrumLossMatchesFiniteDifferences) {
+  const Case cases[] = {{64, {30}}, {200, {10, 70}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE("N=" + std::to_string(c.n));
+    DirectEngine engine(2);
+    const auto k = BuildFrequencySet(DefaultFrequencyParams(c.n), AnisotropyDirections(c.dirs));
+    engine.SetFrequencies(k);
+    std::vector<double> w;
+    for (const Frequency& v : k) w.push_back(std::pow(std::hypot(v.a, v.b), -3.0));
+    engine.SetLossWeights(w);
+    const PointSet pts = OwenScrambledSobol(c.n, 5);
+    SpectrumEvaluation e;
+    engine.Evaluate(pts, true, &e);
+    double expected = 0;
+    for (size_t q = 0; q < k.size(); ++q) expected += w[q] * std::norm(e.spectrum[q]);
+    EXPECT_NEAR(e.loss, expected / (c.n * static_cast<double>(k.size())), 1e-12 * expected);
+    auto loss = [&](const PointSet& p) {
+      SpectrumEvaluation x;
+      engine.Evaluate(p, false, &x);
+      return x.loss;
+    };
+    ExpectGradientMatches(pts, e.gradient, loss, 1e-5, 1e-5);
+  }
+}
+
+TEST(DirectEngine, WeightedSpectrumMatchesNaiveSums) {
+  const PointSet pts = OwenScrambledSobol(70, 3);
+  const auto k = BuildFrequencySet({12, 3, 5}, AnisotropyDirections({21}));
+  std::vector<double> f;
+  for (size_t j = 0; j < pts.size(); ++j) f.push_back(std::sin(0.37 * j) + 0.25);
+  DirectEngine engine(2);
+  engine.SetFrequencies(k);
+  std::vector<std::complex<double>> got;
+  engine.EvaluateWeighted(pts, f, &got);
+  ASSERT_EQ(got.size(), k.size());
+  for (size_t q = 0; q < k.size(); ++q) {
+    std::complex<double> want = 0;
+    for (size_t j = 0; j < pts.size(); ++j) {
+      want += f[j] * std::polar(1.0, -2 * M_PI * (k[q].a * pts[j].x + k[q].b * pts[j].y));
+    }
+    EXPECT_LT(std::abs(want - got[q]), 1e-11) << k[q].a << "," << k[q].b;
+  }
+  // Unit strengths give Evaluate's spectrum.
+  SpectrumEvaluation plain;
+  engine.Evaluate(pts, false, &plain);
+  engine.EvaluateWeighted(pts, std::vector<double>(pts.size(), 1.0), &got);
+  for (size_t q = 0; q < k.size(); ++q) EXPECT_LT(std::abs(got[q] - plain.spectrum[q]), 1e-12);
+}
+
 TEST(Gradient, SlicedWassersteinMatchesFiniteDifferences) {
   const Case cases[] = {{64, {30}}, {200, {10, 70}}, {256, {135}}};
   for (const Case& c : cases) {
