@@ -244,6 +244,9 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
     s.anneal_step = std::pow(options.anneal_ratio, 1.0 / s.max_iterations);
     s.started = true;
   } else if (!engine_holds_k) {
+    // Everything the engine holds for this run is K (SetFrequencies also
+    // resets the loss weights, which the optimizer leaves at 1); if the
+    // optimizer ever sets weights, they must be set again here.
     engine.SetFrequencies(s.k);
   }
 
