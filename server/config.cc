@@ -76,6 +76,8 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::max_waiting_calls, "max-waiting-calls", 1, 10000000)},
       {"max-precompute-streams", "S  concurrent Precompute streams (default 4)",
        IntFlag(&ServerConfig::max_precompute_streams, "max-precompute-streams", 1, 1024)},
+      {"quick-check", "0|1   check the cache file for damaged pages at start (default 1)",
+       IntFlag(&ServerConfig::quick_check, "quick-check", 0, 1)},
       {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
        StringFlag(&ServerConfig::metrics_listen)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",

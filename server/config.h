@@ -37,6 +37,8 @@ struct ServerConfig {
   // no thread, but memory), and Precompute streams (each holds a thread).
   int max_waiting_calls = 10000;
   int max_precompute_streams = 4;
+  // PRAGMA quick_check of the cache file at start (in the background).
+  int quick_check = 1;
   // Prometheus text exposition on HOST:PORT (GET /metrics); empty: off.
   std::string metrics_listen;
   // Decoded canonical sets (and their encoded alignments) kept in memory.

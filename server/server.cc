@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 
+#include "server/integrity_watch.h"
 #include "server/listen_address.h"
 #include "server/reflection_service.h"
 #include "server/scheduler.h"
@@ -58,6 +59,7 @@ struct ServerInstance::Impl {
   std::string db_path;
   Metrics metrics;
   std::unique_ptr<storage::SetCache> cache;
+  std::unique_ptr<IntegrityWatch> integrity;
   std::unique_ptr<Scheduler> scheduler;
   std::unique_ptr<AlignSetService> service;
   std::unique_ptr<ReflectionService> reflection;
@@ -128,6 +130,9 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   so.optimizer.max_iterations = config.max_iterations;
   so.seed = config.seed;
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
+  impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);
+  so.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
+  if (config.quick_check) impl->integrity->CheckInBackground("at start");
   auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
   if (!scheduler.ok()) return scheduler.status();
   impl->scheduler = std::move(scheduler).value();
@@ -196,6 +201,7 @@ void ServerInstance::Shutdown(double grace_seconds) {
   impl_->reflection.reset();
   impl_->service.reset();
   impl_->scheduler.reset();
+  impl_->integrity.reset();  // waits for a check in progress
   impl_->cache.reset();  // closes SQLite cleanly (WAL checkpoint)
   spdlog::info("stopped");
 }

@@ -675,6 +675,7 @@ grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,
   if (auto a = Authorize(ctx); !a.ok()) return a;
   auto stats = cache_->Stats();
   if (!stats.ok()) return ToGrpc(stats.status());
+  resp->set_damaged(stats->damaged);
   resp->set_sets(stats->sets);
   resp->set_bytes(stats->bytes);
   resp->set_one_direction_sets(stats->one_direction_sets);
