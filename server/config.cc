@@ -76,6 +76,8 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::max_waiting_calls, "max-waiting-calls", 1, 10000000)},
       {"max-precompute-streams", "S  concurrent Precompute streams (default 4)",
        IntFlag(&ServerConfig::max_precompute_streams, "max-precompute-streams", 1, 1024)},
+      {"max-batch-calls", "B  concurrent GetAlignedSets batches (default 16)",
+       IntFlag(&ServerConfig::max_batch_calls, "max-batch-calls", 1, 1024)},
       {"quick-check", "0|1   check the cache file for damaged pages at start (default 1)",
        IntFlag(&ServerConfig::quick_check, "quick-check", 0, 1)},
       {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
@@ -119,6 +121,10 @@ std::string ServerUsage() {
   for (const Flag& f : Flags()) {
     u += "  --" + std::string(f.name) + " " + f.help + "  [" + EnvName(f.name) + "]\n";
   }
+  u += "  -h, --help            this text\n"
+       "  -V, --version         release, algorithm version and default profile id\n"
+       "\nExit status: 0 after a clean stop (SIGTERM, SIGINT); 1 when the server cannot start\n"
+       "(the address is taken, the cache cannot be opened); 2 usage (an unknown flag, a bad value).\n";
   return u;
 }
 

@@ -34,9 +34,11 @@ struct ServerConfig {
   int time_slice_ms = 500;
   int max_paused = 16;
   // GetAlignedSet / WatchAlignedSet calls that may wait at once (they hold
-  // no thread, but memory), and Precompute streams (each holds a thread).
+  // no thread, but memory), and Precompute streams and GetAlignedSets
+  // batches (each holds a thread).
   int max_waiting_calls = 10000;
   int max_precompute_streams = 4;
+  int max_batch_calls = 16;
   // PRAGMA quick_check of the cache file at start (in the background).
   int quick_check = 1;
   // Prometheus text exposition on HOST:PORT (GET /metrics); empty: off.

@@ -6,6 +6,8 @@
 #include <ctime>
 #include <iterator>
 
+#include "core/optimize/realization.h"
+
 namespace alignset::server {
 
 using Clock = std::chrono::steady_clock;
@@ -154,8 +156,9 @@ std::string Scheduler::ProfileFor(uint32_t n) const {
   return p;
 }
 
-storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs) const {
-  return storage::SetKey{n, dirs, ProfileFor(n)};
+storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs,
+                                  uint32_t realization) const {
+  return storage::SetKey{n, dirs, ProfileFor(n), realization};
 }
 
 StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
@@ -473,7 +476,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     problem.n = key.n;
     problem.directions = {static_cast<double>(key.dirs.phi1)};
     if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
-    problem.seed = options_.seed;
+    problem.seed = RealizationSeed(options_.seed, key.realization);
     auto run = OptimizerRun::Create(problem, options_.optimizer);
     if (!run.ok()) {
       metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);

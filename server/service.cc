@@ -7,6 +7,7 @@
 #include <deque>
 #include <thread>
 
+#include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
 #include "server/log_text.h"
 #include "server/samples.h"
@@ -123,6 +124,7 @@ void AlignSetService::FillKey(const storage::SetKey& key, v1::CanonicalKey* out)
   out->set_profile(key.profile);
   if (auto index = CanonicalKeyIndex(key.dirs); index.ok()) out->set_index(*index);
   out->set_text(KeyString(key));
+  out->set_realization(key.realization);
 }
 
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
@@ -150,7 +152,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_max_iterations(EffectiveMaxIterations(opt, key.n, key.dirs.count));
   p->set_learning_rate(opt.learning_rate);
   p->set_sw_weight(EffectiveSwWeight(opt, key.n));
-  p->set_seed(scheduler_->options().seed);
+  p->set_seed(RealizationSeed(scheduler_->options().seed, key.realization));
   p->set_algorithm_version(storage::kAlgorithmVersion);
   md->set_from_cache(from_cache);
   md->set_optimize_seconds(rec.optimize_seconds);
@@ -243,7 +245,10 @@ grpc::ServerUnaryReactor* AlignSetService::GetAlignedSet(grpc::CallbackServerCon
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return finish(Invalid(canon.status(), "GetAlignedSet"));
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key);
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
+    return finish(Invalid(r, "GetAlignedSet"));
+  }
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
   if (!ticket.ok()) return finish(ToGrpc(ticket.status()));
   if ((*ticket)->Done()) {
@@ -409,7 +414,10 @@ grpc::ServerWriteReactor<v1::WatchEvent>* AlignSetService::WatchAlignedSet(
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return refuse(Invalid(canon.status(), "WatchAlignedSet"));
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key);
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
+    return refuse(Invalid(r, "WatchAlignedSet"));
+  }
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
   if (!ticket.ok()) return refuse(ToGrpc(ticket.status()));
   if (!TakeWaitingSlot()) {
@@ -484,15 +492,20 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                                            " is not below the shard count " + std::to_string(shards)),
                    "Precompute");
   }
+  if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
+  const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
   // The items are enumerated as they are reached, not listed up front: a
-  // request may name 64 N x 4141 keys. Item i (N outer, keys inner) belongs
-  // to this shard when i mod shards == shard_index.
+  // request may name 64 N x 4141 keys x 64 realizations. Item i (N outer,
+  // then keys, realizations inner) belongs to this shard when
+  // i mod shards == shard_index.
   const uint64_t space_size = space.size();
-  const uint64_t all = static_cast<uint64_t>(req->n().size()) * space_size;
+  const uint64_t per_n = space_size * realizations;
+  const uint64_t all = static_cast<uint64_t>(req->n().size()) * per_n;
   const uint64_t total = req->shard_index() < all ? (all - req->shard_index() + shards - 1) / shards : 0;
   auto item = [&](uint64_t j) {
     const uint64_t i = req->shard_index() + j * shards;
-    return scheduler_->KeyFor(req->n(static_cast<int>(i / space_size)), space[i % space_size]);
+    return scheduler_->KeyFor(req->n(static_cast<int>(i / per_n)), space[(i / realizations) % space_size],
+                              static_cast<uint32_t>(i % realizations));
   };
   const std::string client = ctx->peer();
   spdlog::info("precompute: {} items (shard {}/{}) from {}", total, req->shard_index(), shards,

@@ -45,6 +45,11 @@ class AlignSetService final : public AlignSetServiceBase {
                                           v1::AlignedSetResponse* resp) override;
   grpc::ServerWriteReactor<v1::WatchEvent>* WatchAlignedSet(grpc::CallbackServerContext* ctx,
                                                              const v1::AlignedSetRequest* req) override;
+  // In server/service_batch.cc: the GetAlignedSet path for many items, one
+  // status per item. Synchronous: a batch holds a thread while it waits, so
+  // at most --max-batch-calls run at once.
+  grpc::Status GetAlignedSets(grpc::ServerContext* ctx, const v1::AlignedSetsRequest* req,
+                              v1::AlignedSetsResponse* resp) override;
   grpc::Status Precompute(grpc::ServerContext* ctx, const v1::PrecomputeRequest* req,
                           grpc::ServerWriter<v1::PrecomputeProgress>* writer) override;
   grpc::Status GetSamples(grpc::ServerContext* ctx, const v1::SamplesRequest* req,
@@ -90,6 +95,7 @@ class AlignSetService final : public AlignSetServiceBase {
   Metrics* metrics_;
   std::atomic<int64_t> waiting_calls_{0};
   std::atomic<int> precompute_streams_{0};
+  std::atomic<int> batch_calls_{0};
   std::mutex watches_mu_;
   std::unordered_map<const WatchCall*, std::weak_ptr<WatchCall>> watches_;
   // Last: its thread runs closures that use everything above.

@@ -31,8 +31,8 @@ void Note(std::vector<std::string>* problems, const std::string& line) {
 }
 
 bool KeyLess(const SetKey& a, const SetKey& b) {
-  return std::tie(a.n, a.dirs.count, a.dirs.phi1, a.dirs.phi2, a.profile) <
-         std::tie(b.n, b.dirs.count, b.dirs.phi1, b.dirs.phi2, b.profile);
+  return std::tie(a.n, a.dirs.count, a.dirs.phi1, a.dirs.phi2, a.realization, a.profile) <
+         std::tie(b.n, b.dirs.count, b.dirs.phi1, b.dirs.phi2, b.realization, b.profile);
 }
 
 // The first row at or after `rowid` in the table: its rowid, nullopt at the
@@ -101,6 +101,11 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
   auto version = SchemaVersion(*db);
   if (!version.ok()) return Status::DataLoss("the schema of " + path + " cannot be read: " + version.status().message());
   if (*version < 1) return Status::InvalidArgument(path + " holds no alignset cache");
+  // Files from before schema version 3 have no realization column: their
+  // sets are all realization 0 (as MergeFrom reads them).
+  const bool before_realizations = *version < kFirstSchemaWithRealizations;
+  const std::string key_columns = before_realizations ? kKeyColumnsBeforeRealizations : kKeyColumns;
+  const char* all_columns = before_realizations ? kColumnsBeforeRealizations : kColumns;
   auto tx = Transaction::Begin(*db, Transaction::Kind::kRead);  // one consistent snapshot
   if (!tx.ok()) return tx.status();
 
@@ -121,7 +126,7 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
     }
   }
   for (const std::string& index : indexes) {
-    auto stmt = Stmt::Prepare(db->get(), "SELECT n, dir_count, phi1, phi2, profile, rowid FROM sets INDEXED BY \"" +
+    auto stmt = Stmt::Prepare(db->get(), "SELECT " + key_columns + ", rowid FROM sets INDEXED BY \"" +
                                              index + "\"");
     if (!stmt.ok()) {
       Note(&scan.problems, "index " + index + ": " + stmt.status().message());
@@ -134,7 +139,7 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
         break;
       }
       if (!*row) break;
-      const int64_t rowid = stmt->Int(5);
+      const int64_t rowid = stmt->Int(6);
       by_rowid.emplace(rowid, KeyFromRow(*stmt));
       named_by_index[rowid] = true;
     }
@@ -144,7 +149,7 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
   // "rowid >= start": a seek for "> r" lands on the page that holds r.
   int64_t start = 1;  // rowids start at 1
   for (;;) {
-    auto stmt = Stmt::Prepare(db->get(), "SELECT n, dir_count, phi1, phi2, profile, rowid FROM sets NOT INDEXED "
+    auto stmt = Stmt::Prepare(db->get(), "SELECT " + key_columns + ", rowid FROM sets NOT INDEXED "
                                          "WHERE rowid >= ?1 ORDER BY rowid");
     if (!stmt.ok()) return Status::DataLoss("the table of " + path + " cannot be read: " + stmt.status().message());
     stmt->BindInt(1, start);
@@ -158,7 +163,7 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
         break;
       }
       if (!*row) break;
-      last = stmt->Int(5);
+      last = stmt->Int(6);
       by_rowid.emplace(last, KeyFromRow(*stmt));
     }
     if (!damaged) break;
@@ -172,7 +177,7 @@ StatusOr<DamageScan> ScanForDamage(const std::string& path,
   std::set<std::string> readable_keys;
   std::map<std::string, SetKey> damaged;
   for (const auto& [rowid, key] : by_rowid) {
-    auto stmt = Stmt::Prepare(db->get(), std::string("SELECT ") + kColumns + " FROM sets NOT INDEXED WHERE rowid = ?1");
+    auto stmt = Stmt::Prepare(db->get(), std::string("SELECT ") + all_columns + " FROM sets NOT INDEXED WHERE rowid = ?1");
     if (!stmt.ok()) return stmt.status();
     stmt->BindInt(1, rowid);
     auto row = stmt->Step();

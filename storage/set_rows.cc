@@ -9,7 +9,8 @@ void BindKey(Stmt& s, const SetKey& key) {
   s.BindInt(2, key.dirs.count);
   s.BindInt(3, key.dirs.phi1);
   s.BindInt(4, key.dirs.phi2);
-  s.BindText(5, key.profile);
+  s.BindInt(5, key.realization);
+  s.BindText(6, key.profile);
 }
 
 SetKey KeyFromRow(const Stmt& s) {
@@ -19,7 +20,9 @@ SetKey KeyFromRow(const Stmt& s) {
   k.dirs.count = static_cast<int>(s.Int(1));
   k.dirs.phi1 = static_cast<int>(s.Int(2));
   k.dirs.phi2 = static_cast<int>(s.Int(3));
-  k.profile = s.Text(4);
+  const int64_t r = s.Int(4);
+  k.realization = (r < 0 || r > UINT32_MAX) ? UINT32_MAX : static_cast<uint32_t>(r);
+  k.profile = s.Text(5);
   return k;
 }
 

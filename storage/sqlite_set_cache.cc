@@ -39,8 +39,9 @@ namespace alignset::storage {
 namespace {
 
 constexpr const char* kKeyWhere =
-    " WHERE n = ?1 AND dir_count = ?2 AND phi1 = ?3 AND phi2 = ?4 AND profile = ?5";
-constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, profile";
+    " WHERE n = ?1 AND dir_count = ?2 AND phi1 = ?3 AND phi2 = ?4 AND realization = ?5"
+    " AND profile = ?6";
+constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, realization, profile";
 constexpr size_t kMaxEngineName = 64;
 
 bool Finite(double v) { return std::isfinite(v); }
@@ -141,7 +142,7 @@ class SqliteSetCache final : public SetCache {
   StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n,
                                      std::optional<std::string> profile) override {
     std::lock_guard<std::mutex> lock(mu_);
-    auto stmt = Stmt::Prepare(db_.get(), "SELECT n, dir_count, phi1, phi2, profile FROM sets" +
+    auto stmt = Stmt::Prepare(db_.get(), "SELECT n, dir_count, phi1, phi2, realization, profile FROM sets" +
                                              Filter(n, profile) + kOrder);
     if (!stmt.ok()) return stmt.status();
     BindFilter(*stmt, n, profile);
@@ -161,8 +162,9 @@ class SqliteSetCache final : public SetCache {
     // is touched.
     auto stmt = Stmt::Prepare(
         db_.get(),
-        "SELECT n, dir_count, phi1, phi2, profile, loss_total, loss_spectrum, loss_sw, iterations, "
-        "optimize_seconds, engine, created_unix, algorithm_version, length(points) FROM sets" +
+        "SELECT n, dir_count, phi1, phi2, realization, profile, loss_total, loss_spectrum, "
+        "loss_sw, iterations, optimize_seconds, engine, created_unix, algorithm_version, "
+        "length(points) FROM sets" +
             Filter(n, profile) + kOrder);
     if (!stmt.ok()) return stmt.status();
     BindFilter(*stmt, n, profile);
@@ -174,7 +176,7 @@ class SqliteSetCache final : public SetCache {
       SetSummary s;
       s.key = KeyFromRow(*stmt);
       MetadataFromRow(*stmt, &s);
-      s.bytes = stmt->Int(13);
+      s.bytes = stmt->Int(14);
       out.push_back(std::move(s));
     }
   }
@@ -213,8 +215,9 @@ class SqliteSetCache final : public SetCache {
     if (!other.ok()) return other.status();
     auto version = SchemaVersion(*other);
     if (!version.ok()) return version.status();
-    // Every version so far has the same `sets` columns; a migration that
-    // changes them must teach this reader the older layouts.
+    // Versions 1 and 2 lack the realization column (their sets are
+    // realization 0); a later migration that changes the columns must teach
+    // this reader its layout too.
     if (*version < 1) return Status::InvalidArgument(other_path + " holds no alignset cache");
     if (*version > LatestSchemaVersion()) {
       return Status::InvalidArgument(other_path + " has schema version " + std::to_string(*version) +
@@ -222,7 +225,14 @@ class SqliteSetCache final : public SetCache {
     }
     auto tx = Transaction::Begin(*other, Transaction::Kind::kRead);
     if (!tx.ok()) return tx.status();
-    auto stmt = Stmt::Prepare(other->get(), std::string("SELECT ") + kColumns + " FROM sets" + kOrder);
+    const bool before_realizations = *version < 3;
+    auto stmt = Stmt::Prepare(other->get(), std::string("SELECT ") +
+                                                 (before_realizations ? kColumnsBeforeRealizations
+                                                                      : kColumns) +
+                                                 " FROM sets" +
+                                                 (before_realizations
+                                                      ? " ORDER BY n, dir_count, phi1, phi2, profile"
+                                                      : kOrder));
     if (!stmt.ok()) return stmt.status();
     MergeReport report;
     for (;;) {
@@ -331,19 +341,19 @@ class SqliteSetCache final : public SetCache {
     {
       auto stmt = Stmt::Prepare(db_.get(), std::string("INSERT OR REPLACE INTO sets (") + kColumns +
                                                ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
-                                               "?10, ?11, ?12, ?13, ?14, ?15)");
+                                               "?10, ?11, ?12, ?13, ?14, ?15, ?16)");
       if (!stmt.ok()) return stmt.status();
       BindKey(*stmt, r.key);
-      stmt->BindDouble(6, r.loss.total);
-      stmt->BindDouble(7, r.loss.spectrum);
-      stmt->BindDouble(8, r.loss.sw);
-      stmt->BindInt(9, r.iterations);
-      stmt->BindDouble(10, r.optimize_seconds);
-      stmt->BindText(11, r.engine);
-      stmt->BindInt(12, r.created_unix != 0 ? r.created_unix : static_cast<int64_t>(std::time(nullptr)));
-      stmt->BindInt(13, r.algorithm_version);
-      stmt->BindInt(14, crc);
-      stmt->BindBlob(15, blob);
+      stmt->BindDouble(7, r.loss.total);
+      stmt->BindDouble(8, r.loss.spectrum);
+      stmt->BindDouble(9, r.loss.sw);
+      stmt->BindInt(10, r.iterations);
+      stmt->BindDouble(11, r.optimize_seconds);
+      stmt->BindText(12, r.engine);
+      stmt->BindInt(13, r.created_unix != 0 ? r.created_unix : static_cast<int64_t>(std::time(nullptr)));
+      stmt->BindInt(14, r.algorithm_version);
+      stmt->BindInt(15, crc);
+      stmt->BindBlob(16, blob);
       Status s = stmt->Run();
       if (!s.ok()) return s;
     }

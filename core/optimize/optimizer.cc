@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "core/optimize/axis_stratification.h"
+#include "core/optimize/low_frequency_projection.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/optimize/sliced_wasserstein.h"
 
@@ -109,7 +111,31 @@ Status ValidateProblem(const OptimizationProblem& p) {
   for (double d : p.directions) {
     if (!std::isfinite(d)) return Status::InvalidArgument("direction must be a finite angle");
   }
+  if (p.start) {
+    if (p.start->size() != p.n) {
+      return Status::InvalidArgument("start set has " + std::to_string(p.start->size()) +
+                                     " points, expected " + std::to_string(p.n));
+    }
+    for (const Point2& q : *p.start) {
+      if (!(q.x >= 0.0 && q.x < 1.0 && q.y >= 0.0 && q.y < 1.0)) {
+        return Status::InvalidArgument("start set has a point outside [0,1)^2");
+      }
+    }
+  }
   if (p.frequency_params) return ValidateFrequencyParams(*p.frequency_params);
+  return Status::Ok();
+}
+
+static Status ValidateWeighting(const SpectrumWeighting& w) {
+  auto bad = [](double v, double lo, double hi) { return !std::isfinite(v) || v < lo || v > hi; };
+  if (bad(w.exponent, 0.0, 16.0)) return Status::InvalidArgument("weighting exponent must be in [0, 16]");
+  if (w.strip_exponent >= 0.0 && bad(w.strip_exponent, 0.0, 16.0)) {
+    return Status::InvalidArgument("strip exponent must be in [0, 16] (or negative: as exponent)");
+  }
+  if (bad(w.strip_scale, 1e-12, 1e12) || bad(w.low_boost, 1e-12, 1e12)) {
+    return Status::InvalidArgument("weighting scales must be in [1e-12, 1e12]");
+  }
+  if (bad(w.low_radius, 0.0, 1e6)) return Status::InvalidArgument("low radius must be >= 0");
   return Status::Ok();
 }
 
@@ -129,13 +155,28 @@ Status ValidateOptions(const OptimizerOptions& o) {
     return Status::InvalidArgument("plateau_factor must be in (0, 1]");
   }
   if (o.stall_iterations < 1) return Status::InvalidArgument("stall_iterations must be >= 1");
+  for (const SpectrumWeighting* w : {&o.weighting, &o.warmup_weighting}) {
+    if (Status s = ValidateWeighting(*w); !s.ok()) return s;
+  }
+  if (!(o.final_margin >= 0.0 && o.final_margin < 0.5)) {
+    return Status::InvalidArgument("final_margin must be in [0, 0.5)");
+  }
+  if (!(o.zero_radius >= 0.0 && o.zero_radius <= 16.0)) {
+    return Status::InvalidArgument("zero_radius must be in [0, 16]");
+  }
+  if (!(o.warmup_fraction >= 0.0 && o.warmup_fraction < 1.0)) {
+    return Status::InvalidArgument("warmup_fraction must be in [0, 1)");
+  }
   return Status::Ok();
 }
 
 LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
-                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine) {
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine,
+                       const SpectrumWeighting& weighting) {
   const std::vector<double> dirs = AnisotropyDirections(arbitrary_directions);
-  engine.SetFrequencies(BuildFrequencySet(params, dirs));
+  const std::vector<Frequency> k = BuildFrequencySet(params, dirs);
+  engine.SetFrequencies(k);
+  engine.SetLossWeights(SpectrumLossWeights(k, weighting, params, arbitrary_directions));
   SpectrumEvaluation eval;
   engine.Evaluate(points, false, &eval);
   SlicedWasserstein sw(static_cast<uint32_t>(points.size()), dirs);
@@ -145,7 +186,6 @@ LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitr
   t.total = t.spectrum + sw_weight * t.sw;
   return t;
 }
-
 // Everything the loop carries from one iteration to the next, kept between
 // slices. `trial`, `scratch` and `sw_grad` are overwritten before they are
 // read in every iteration, so they are dropped while the run is paused.
@@ -155,6 +195,18 @@ struct OptimizerRun::State {
   OptimizationResult result;
   std::vector<Frequency> k;
   std::unique_ptr<SlicedWasserstein> sw;
+  // The phases: an optional warm-up weighting, then the main one; each ends
+  // at its iteration and hands its best set to the next.
+  struct Phase {
+    std::vector<double> weights;
+    int end_iteration;
+  };
+  std::vector<Phase> phases;
+  size_t phase = 0;
+  bool phase_started = false;  // `accepted` holds this phase's start
+  PointSet x;                  // the set handed to the next phase (or the result)
+  AxisStratification stratification;
+  double first_lr = 0.0;
   double lr = 0.0;
   double sw_weight = 0.0;
   int max_iterations = 0;
@@ -207,8 +259,12 @@ size_t OptimizerRun::HeldBytes() const {
   const size_t points = s.accepted.x.capacity() + s.accepted.m.capacity() + s.accepted.v.capacity() +
                         s.accepted.grad.capacity() + s.best.capacity() + s.trial.x.capacity() +
                         s.trial.m.capacity() + s.trial.v.capacity() + s.trial.grad.capacity() +
-                        s.sw_grad.capacity() + s.scratch.gradient.capacity();
+                        s.sw_grad.capacity() + s.scratch.gradient.capacity() + s.x.capacity() +
+                        (s.problem.start ? s.problem.start->capacity() : 0);
+  size_t weights = 0;
+  for (const State::Phase& p : s.phases) weights += p.weights.capacity();
   return points * sizeof(Point2) + s.k.capacity() * sizeof(Frequency) +
+         weights * sizeof(double) + 2 * s.problem.n * sizeof(uint32_t) +  // the clamp's orders
          s.scratch.spectrum.capacity() * sizeof(std::complex<double>) +
          (s.sw ? s.sw->directions().size() * s.problem.n * (sizeof(double) + sizeof(uint32_t)) : 0);
 }
@@ -218,105 +274,157 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
   State& s = *s_;
   if (s.over) return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
   const OptimizerOptions& options = s.options;
+  const OptimizationProblem& problem = s.problem;
   if (!s.started) {
-    s.result.frequency_params =
-        s.problem.frequency_params.value_or(DefaultFrequencyParams(s.problem.n));
-    const std::vector<double> dirs = AnisotropyDirections(s.problem.directions);
+    s.result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
+    const std::vector<double> dirs = AnisotropyDirections(problem.directions);
     s.k = BuildFrequencySet(s.result.frequency_params, dirs);
     s.result.frequency_count = s.k.size();
     engine.SetFrequencies(s.k);
-    s.sw = std::make_unique<SlicedWasserstein>(s.problem.n, dirs);
-    s.lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
-    s.sw_weight = EffectiveSwWeight(options, s.problem.n);
-    s.max_iterations = EffectiveMaxIterations(options, s.problem.n,
-                                              static_cast<int>(s.problem.directions.size()));
-    // `accepted` is the state after the last accepted step; each step is
-    // tried in `trial`, and the two are swapped when it is accepted (no
-    // copies of the O(N) state per iteration).
-    s.accepted.x = OwenScrambledSobol(s.problem.n, s.problem.seed);
-    s.accepted.m.assign(s.problem.n, {0.0, 0.0});
-    s.accepted.v.assign(s.problem.n, {0.0, 0.0});
-    EvaluateTotal(s.accepted.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &s.accepted);
-    s.result.initial = s.accepted.loss;
-    s.best = s.accepted.x;
-    s.best_loss = s.accepted.loss;
-    s.stall_reference = s.best_loss.total;
+    std::vector<double> sw_weights;
+    if (options.sw_arbitrary_scale != 1.0) {
+      sw_weights.assign(dirs.size(), options.sw_arbitrary_scale);
+      sw_weights[0] = sw_weights[1] = 1.0;  // the axes come first
+    }
+    s.sw = std::make_unique<SlicedWasserstein>(problem.n, dirs, sw_weights);
+    s.first_lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
+    s.lr = s.first_lr;
+    s.sw_weight = EffectiveSwWeight(options, problem.n);
+    s.max_iterations =
+        EffectiveMaxIterations(options, problem.n, static_cast<int>(problem.directions.size()));
+    std::vector<double> main_weights =
+        SpectrumLossWeights(s.k, options.weighting, s.result.frequency_params, problem.directions);
+    const int warmup_iterations =
+        static_cast<int>(std::lround(options.warmup_fraction * s.max_iterations));
+    if (warmup_iterations > 0 && warmup_iterations < s.max_iterations) {
+      s.phases.push_back({SpectrumLossWeights(s.k, options.warmup_weighting,
+                                              s.result.frequency_params, problem.directions),
+                          warmup_iterations});
+    }
+    s.phases.push_back({std::move(main_weights), s.max_iterations});
+    // `initial` is reported under the main weighting, like `final_loss`.
+    s.x = problem.start ? *problem.start : OwenScrambledSobol(problem.n, problem.seed);
+    s.problem.start.reset();  // copied into x; not held while paused
+    AdamState start;
+    engine.SetLossWeights(s.phases.back().weights);
+    EvaluateTotal(s.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &start);
+    s.result.initial = start.loss;
     s.anneal_step = std::pow(options.anneal_ratio, 1.0 / s.max_iterations);
     s.started = true;
   } else if (!engine_holds_k) {
-    // Everything the engine holds for this run is K (SetFrequencies also
-    // resets the loss weights, which the optimizer leaves at 1); if the
-    // optimizer ever sets weights, they must be set again here.
+    // Everything the engine holds for this run: K, and the weights of the
+    // current phase (SetFrequencies resets them).
     engine.SetFrequencies(s.k);
+    engine.SetLossWeights(s.phases[s.phase].weights);
   }
 
   AdamState& accepted = s.accepted;
   AdamState& trial = s.trial;
-  while (s.it < s.max_iterations) {
-    const int it = ++s.it;
-    s.lr *= s.anneal_step;
-    AdamStep(accepted, options, s.lr, &trial);
-    EvaluateTotal(trial.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &trial);
+  for (; s.phase < s.phases.size(); ++s.phase, s.phase_started = false) {
+    const State::Phase& phase = s.phases[s.phase];
+    if (!s.phase_started) {
+      engine.SetLossWeights(phase.weights);
+      // `accepted` is the state after the last accepted step; each step is
+      // tried in `trial`, and the two are swapped when it is accepted (no
+      // copies of the O(N) state per iteration).
+      accepted = AdamState();
+      accepted.x = std::move(s.x);
+      accepted.m.assign(problem.n, {0.0, 0.0});
+      accepted.v.assign(problem.n, {0.0, 0.0});
+      EvaluateTotal(accepted.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &accepted);
+      trial = AdamState();
+      s.best = accepted.x;
+      s.best_loss = accepted.loss;
+      s.stall_reference = s.best_loss.total;
+      s.since_improvement = 0;
+      s.lr = s.first_lr;
+      s.reason = StopReason::kMaxIterations;
+      s.phase_started = true;
+    }
+    while (s.it < phase.end_iteration) {
+      const int it = ++s.it;
+      s.lr *= s.anneal_step;
+      AdamStep(accepted, options, s.lr, &trial);
+      if (options.stratify_axes) s.stratification.Apply(&trial.x);
+      EvaluateTotal(trial.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &trial);
 
-    const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
-    const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
-    const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
-    const bool diverged =
-        !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
-    if (diverged) {
-      s.lr /= options.revert_divisor;
-      ++s.result.reverts;
-      if (s.lr < options.min_learning_rate) {
-        s.reason = StopReason::kLearningRateFloor;
-        break;
-      }
-    } else {
-      std::swap(accepted, trial);
-      if (accepted.loss.total < s.best_loss.total) {
-        s.best_loss = accepted.loss;
-        s.best = accepted.x;
-      }
-      if (s.best_loss.total < (1.0 - options.stall_tolerance) * s.stall_reference) {
-        s.stall_reference = s.best_loss.total;
-        s.since_improvement = 0;
-      } else if (++s.since_improvement >= options.stall_iterations) {
-        if (options.plateau_factor >= 1.0) {
-          s.reason = StopReason::kStalled;
-          break;
-        }
-        s.lr *= options.plateau_factor;
-        s.since_improvement = 0;
-        s.stall_reference = s.best_loss.total;
+      const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
+      const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
+      const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
+      const bool diverged =
+          !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
+      if (diverged) {
+        s.lr /= options.revert_divisor;
+        ++s.result.reverts;
         if (s.lr < options.min_learning_rate) {
-          s.reason = StopReason::kStalled;
+          s.reason = StopReason::kLearningRateFloor;
           break;
+        }
+      } else {
+        std::swap(accepted, trial);
+        if (accepted.loss.total < s.best_loss.total) {
+          s.best_loss = accepted.loss;
+          s.best = accepted.x;
+        }
+        if (s.best_loss.total < (1.0 - options.stall_tolerance) * s.stall_reference) {
+          s.stall_reference = s.best_loss.total;
+          s.since_improvement = 0;
+        } else if (++s.since_improvement >= options.stall_iterations) {
+          if (options.plateau_factor >= 1.0) {
+            s.reason = StopReason::kStalled;
+            break;
+          }
+          s.lr *= options.plateau_factor;
+          s.since_improvement = 0;
+          s.stall_reference = s.best_loss.total;
+          if (s.lr < options.min_learning_rate) {
+            s.reason = StopReason::kStalled;
+            break;
+          }
+        }
+      }
+      if (options.progress_every > 0 && it % options.progress_every == 0 && control) {
+        const RunControl c = control(s.Info(it));
+        if (c == RunControl::kCancel) {
+          s.reason = StopReason::kCancelled;
+          break;
+        }
+        if (c == RunControl::kPause && it < s.max_iterations) {
+          // Drop what the next iteration overwrites anyway.
+          trial = AdamState();
+          s.scratch = SpectrumEvaluation();
+          s.sw_grad = std::vector<Point2>();
+          return Outcome::kPaused;
         }
       }
     }
-    if (options.progress_every > 0 && it % options.progress_every == 0 && control) {
-      const RunControl c = control(s.Info(it));
-      if (c == RunControl::kCancel) {
-        s.reason = StopReason::kCancelled;
-        break;
-      }
-      if (c == RunControl::kPause && it < s.max_iterations) {
-        // Drop what the next iteration overwrites anyway.
-        trial = AdamState();
-        s.scratch = SpectrumEvaluation();
-        s.sw_grad = std::vector<Point2>();
-        return Outcome::kPaused;
-      }
-    }
+    s.x = std::move(s.best);
+    s.best = PointSet();
+    // A phase that stalls hands over to the next (which then has the rest of
+    // the budget); a cancel ends the run.
+    if (s.reason == StopReason::kCancelled) break;
+    if (s.phase + 1 == s.phases.size() && control) control(s.Info(s.it));
   }
   s.over = true;
   s.result.iterations = s.it;
-  if (s.reason != StopReason::kCancelled && control) control(s.Info(s.it));
+  if ((options.zero_radius > 0.0 || options.final_margin > 0.0) &&
+      s.reason != StopReason::kCancelled) {
+    const std::vector<Frequency> low = LowFrequencies(options.zero_radius);
+    for (int round = 0; round < 3; ++round) {
+      ProjectLowFrequencies(&s.x, low, 2);
+      if (options.stratify_axes) s.stratification.Apply(&s.x, options.final_margin);
+    }
+    ProjectLowFrequencies(&s.x, low, 2);
+    AdamState projected;
+    EvaluateTotal(s.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &projected);
+    s.best_loss = projected.loss;
+  }
   return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
 }
 
 OptimizationResult OptimizerRun::TakeResult() {
   State& s = *s_;
-  s.result.points = std::move(s.best);
+  s.result.points = std::move(s.x);
   s.result.final_loss = s.best_loss;
   s.result.final_learning_rate = s.lr;
   s.result.stop_reason = s.reason;

@@ -19,18 +19,23 @@ using testing::MakeRecord;
 using testing::MustOpen;
 using testing::TempDir;
 
-// 46 + 60 small sets (N = 64: a few rows per 4 KiB page, so the table has
+// 46 + 60 + 10 small sets (N = 64: a few rows per 4 KiB page, so the table has
 // many leaves); returns rowid -> key.
 std::map<int64_t, SetKey> Fill(const std::string& path) {
   {
     auto cache = MustOpen(path);
     for (int phi = 0; phi <= 45; ++phi) EXPECT_TRUE(cache->Put(MakeRecord(Key1(64, phi))).ok());
     for (int phi = 0; phi < 60; ++phi) EXPECT_TRUE(cache->Put(MakeRecord(Key2(64, phi, phi + 50))).ok());
+    for (int phi = 0; phi < 10; ++phi) {  // realizations are part of the key
+      SetKey k = Key1(64, phi);
+      k.realization = 3;
+      EXPECT_TRUE(cache->Put(MakeRecord(k)).ok());
+    }
   }  // closed: checkpointed, no WAL left
   std::map<int64_t, SetKey> keys;
   auto db = Db::Open(path, SQLITE_OPEN_READONLY, 1000);
-  auto stmt = Stmt::Prepare(db->get(), "SELECT n, dir_count, phi1, phi2, profile, rowid FROM sets");
-  while (*stmt->Step()) keys[stmt->Int(5)] = KeyFromRow(*stmt);
+  auto stmt = Stmt::Prepare(db->get(), std::string("SELECT ") + kKeyColumns + ", rowid FROM sets");
+  while (*stmt->Step()) keys[stmt->Int(6)] = KeyFromRow(*stmt);
   return keys;
 }
 
@@ -121,7 +126,7 @@ TEST(CacheRecovery, RecoverRefusesAnExistingPartialFileUnlessForced) {
   EXPECT_TRUE(std::filesystem::exists(dir.File("new.sqlite.partial")));
   auto forced = RecoverCache(dir.File("c.sqlite"), dir.File("new.sqlite"), /*overwrite_partial=*/true);
   ASSERT_TRUE(forced.ok()) << forced.status().message();
-  EXPECT_EQ(forced->recovered, 106);
+  EXPECT_EQ(forced->recovered, 116);
   EXPECT_FALSE(RecoverCache(dir.File("c.sqlite"), dir.File("new.sqlite")).ok());  // exists now
 }
 
