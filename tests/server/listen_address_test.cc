@@ -25,7 +25,9 @@ TEST(ListenAddressTest, RefusesWhatGrpcWouldQuietlyReinterpret) {
                           "127.0.0.1:", ":50051", "::1:50051", "[::1:50051", "host:5x", "unix:"}) {
     auto a = ParseListenAddress(bad, "--listen");
     EXPECT_FALSE(a.ok()) << bad;
-    if (!a.ok()) EXPECT_NE(a.status().message().find("--listen"), std::string::npos);
+    if (!a.ok()) {
+      EXPECT_NE(a.status().message().find("--listen"), std::string::npos);
+    }
   }
   EXPECT_NE(ParseListenAddress("127.0.0.1:80000", "--listen").status().message().find("outside 0..65535"),
             std::string::npos);

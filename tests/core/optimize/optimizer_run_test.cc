@@ -78,6 +78,34 @@ TEST(OptimizerRun, FastEngineTwoDirectionsAlsoResumeExactly) {
   EXPECT_GT(slices, 5);
 }
 
+// The optional levers add state across slices: the phase and its loss
+// weights (set again on a rebound engine), the axis clamp's orders, the
+// start set, the final projection.
+TEST(OptimizerRun, WarmupPhaseAxisClampAndProjectionAlsoResumeExactly) {
+  FastEngine reference_engine(1), a(2), b(1);
+  auto problem = Problem(256, {20.0, 100.0});
+  {  // continue from a briefly optimized set
+    auto first = Optimize(problem, Options(20), reference_engine);
+    ASSERT_TRUE(first.ok());
+    problem.start = first->points;
+    problem.seed = 99;  // unused with a start set
+  }
+  auto o = Options(120);
+  o.warmup_fraction = 0.3;
+  o.warmup_weighting.exponent = 1.0;
+  o.weighting.exponent = 0.5;
+  o.stratify_axes = true;
+  o.zero_radius = 2.0;
+  o.final_margin = 0.1;
+  o.sw_arbitrary_scale = 2.0;
+  auto whole = Optimize(problem, o, reference_engine);
+  ASSERT_TRUE(whole.ok());
+  int slices = 0;
+  ExpectSameRun(Sliced(problem, o, 13, a, b, &slices), *whole);
+  EXPECT_EQ(whole->iterations, 120);
+  EXPECT_GE(slices, 120 / 13);
+}
+
 TEST(OptimizerRun, CancelKeepsTheBestSetSoFarAndHoldsNoMoreThanTheState) {
   DirectEngine engine(1);
   auto run = OptimizerRun::Create(Problem(64, {10.0}), Options(100));
