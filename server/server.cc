@@ -11,6 +11,8 @@
 
 #include "server/integrity_watch.h"
 #include "server/listen_address.h"
+#include "server/metrics_http.h"
+#include "server/prometheus_text.h"
 #include "server/reflection_service.h"
 #include "server/scheduler.h"
 #include "server/service.h"
@@ -40,11 +42,13 @@ StatusOr<std::string> ReadToken(const std::string& path) {
   return t;
 }
 
-Status WritePortFile(const std::string& path, int port) {
+// "PORT\n", then "metrics PORT\n" when the metrics endpoint is on.
+Status WritePortFile(const std::string& path, int port, int metrics_port) {
   const std::string tmp = path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f) return Status::InvalidArgument("cannot write --port-file " + path);
   std::fprintf(f, "%d\n", port);
+  if (metrics_port > 0) std::fprintf(f, "metrics %d\n", metrics_port);
   const bool ok = std::fclose(f) == 0;
   if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
     return Status::InvalidArgument("cannot write --port-file " + path);
@@ -63,6 +67,7 @@ struct ServerInstance::Impl {
   std::unique_ptr<Scheduler> scheduler;
   std::unique_ptr<AlignSetService> service;
   std::unique_ptr<ReflectionService> reflection;
+  std::unique_ptr<MetricsHttpServer> metrics_http;
   std::unique_ptr<grpc::Server> server;
   int port = 0;
   bool stopped = false;
@@ -166,8 +171,24 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   // balancers ask per service.
   impl->server->GetHealthCheckService()->SetServingStatus(true);
   impl->server->GetHealthCheckService()->SetServingStatus(v1::AlignSet::service_full_name(), true);
+  if (!config.metrics_listen.empty()) {
+    auto http = MetricsHttpServer::Start(config.metrics_listen, [service, m = &impl->metrics] {
+      v1::MetricsResponse values;
+      service->FillMetrics(&values);
+      return PrometheusText(values, *m);
+    });
+    if (!http.ok()) {
+      impl->server->Shutdown();
+      impl->scheduler->Shutdown();
+      return http.status();
+    }
+    impl->metrics_http = std::move(http).value();
+    spdlog::info("Prometheus metrics on http://{}/metrics (port {})", config.metrics_listen,
+                 impl->metrics_http->port());
+  }
   if (!config.port_file.empty()) {
-    if (Status s = WritePortFile(config.port_file, impl->port); !s.ok()) {
+    const int metrics_port = impl->metrics_http ? impl->metrics_http->port() : 0;
+    if (Status s = WritePortFile(config.port_file, impl->port, metrics_port); !s.ok()) {
       impl->server->Shutdown();
       impl->scheduler->Shutdown();
       return s;
@@ -198,6 +219,7 @@ void ServerInstance::Shutdown(double grace_seconds) {
   impl_->server->Shutdown(deadline);
   impl_->server->Wait();
   impl_->scheduler->Shutdown();  // joins workers: a write in progress completes
+  impl_->metrics_http.reset();  // before the service its scrapes read
   impl_->reflection.reset();
   impl_->service.reset();
   impl_->scheduler.reset();

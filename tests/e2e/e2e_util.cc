@@ -1,6 +1,10 @@
 #include "tests/e2e/e2e_util.h"
 
+#include <arpa/inet.h>
 #include <dirent.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -98,6 +102,34 @@ std::map<std::string, double> ParsePrometheus(const std::string& text) {
     out[line.substr(0, space)] = std::strtod(line.c_str() + space + 1, nullptr);
   }
   return out;
+}
+
+HttpReply HttpRequest(int port, const std::string& method, const std::string& path) {
+  HttpReply reply;
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return reply;
+  timeval timeout{10, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<uint16_t>(port));
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string raw;
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0) {
+    const std::string request = method + " " + path + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+    if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(request.size())) {
+      char buf[4096];
+      for (ssize_t got; (got = ::recv(fd, buf, sizeof(buf), 0)) > 0;) raw.append(buf, static_cast<size_t>(got));
+    }
+  }
+  ::close(fd);
+  const size_t end = raw.find("\r\n\r\n");
+  if (end == std::string::npos || raw.compare(0, 5, "HTTP/") != 0) return reply;
+  reply.headers = raw.substr(0, end);
+  reply.body = raw.substr(end + 4);
+  const size_t space = reply.headers.find(' ');
+  if (space != std::string::npos) reply.status = std::atoi(reply.headers.c_str() + space + 1);
+  return reply;
 }
 
 }  // namespace alignset::e2e

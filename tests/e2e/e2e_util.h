@@ -44,4 +44,14 @@ std::string ReadText(const std::string& path);
 // -> value, for every sample line.
 std::map<std::string, double> ParsePrometheus(const std::string& text);
 
+// One HTTP/1.0 request on a plain socket to 127.0.0.1:`port` (no curl
+// needed on the test machine): the status code (0 when nothing came back),
+// the header block and the body.
+struct HttpReply {
+  int status = 0;
+  std::string headers;
+  std::string body;
+};
+HttpReply HttpRequest(int port, const std::string& method, const std::string& path);
+
 }  // namespace alignset::e2e
