@@ -6,12 +6,18 @@
 #include <signal.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <thread>
 
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "storage/set_cache.h"
+#include "storage/set_rows.h"
+#include "storage/sqlite_handle.h"
+#include "tests/damage_pages.h"
 #include "tests/e2e/e2e_util.h"
 #include "tests/e2e/server_process.h"
 
@@ -198,6 +204,108 @@ TEST_F(HardeningTest, SetServedButNotStoredIsReportedInTheResponseMetricsAndLog)
   ASSERT_TRUE(stub->GetAlignedSet(&ctx, SetRequest(64, {10.0}), &stored).ok());
   EXPECT_FALSE(stored.metadata().not_stored());  // read back from the file
   EXPECT_EQ(GetMetrics(server_->address()).sets_not_stored(), 1u);
+}
+
+// ------------------------------------------------------------- item 4
+
+// Precomputes the 46 one-direction keys at N = 64 (a few rows per 4 KiB
+// page: the table spans several leaves).
+void PrecomputeOneDirection(const std::string& address) {
+  auto stub = OwnStub(address);
+  grpc::ClientContext ctx;
+  v1::PrecomputeRequest req;
+  req.add_n(64);
+  req.set_space(v1::ONE_DIRECTION);
+  auto stream = stub->Precompute(&ctx, req);
+  v1::PrecomputeProgress p;
+  while (stream->Read(&p)) {
+  }
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(p.done(), 46u);
+}
+
+TEST_F(HardeningTest, DamagedPagesAreReportedListedByVerifyAndRecovered) {
+  StartServer(kFast);
+  PrecomputeOneDirection(server_->address());
+  server_->Stop(SIGTERM);  // checkpointed: no WAL left
+  const std::string db = server_->db_path();
+
+  std::map<int64_t, storage::SetKey> keys;
+  {
+    auto raw = storage::Db::Open(db, SQLITE_OPEN_READONLY, 1000);
+    ASSERT_TRUE(raw.ok());
+    auto stmt = storage::Stmt::Prepare(raw->get(), std::string("SELECT ") + storage::kKeyColumns +
+                                                       ", rowid FROM sets");
+    ASSERT_TRUE(stmt.ok());
+    while (*stmt->Step()) keys[stmt->Int(6)] = storage::KeyFromRow(*stmt);
+  }
+  ASSERT_EQ(keys.size(), 46u);
+  const auto pages = ::alignset::testing::FindTablePages(db, "sets");
+  ASSERT_GT(pages.leaves.size(), 2u);
+  const size_t victim = pages.leaves.size() / 2;
+  ::alignset::testing::DamagePageHeader(db, pages.page_size, pages.leaves[victim]);
+  std::set<std::string> lost;
+  for (int64_t rowid : pages.rowids[victim]) lost.insert(storage::KeyToString(keys.at(rowid)));
+  ASSERT_FALSE(lost.empty());
+
+  // Reported: an error line naming the repair, and the metric.
+  StartServer(With(kFast, {"--metrics-listen", "127.0.0.1:0"}));
+  for (int i = 0; i < 100 && GetMetrics(server_->address()).database_integrity_errors() == 0; ++i) {
+    std::this_thread::sleep_for(100ms);
+  }
+  EXPECT_GT(GetMetrics(server_->address()).database_integrity_errors(), 0u);
+  EXPECT_NE(Log().find("is damaged: quick_check"), std::string::npos) << Log();
+  EXPECT_NE(Log().find("alignset cache recover"), std::string::npos) << Log();
+  const auto scraped = ParsePrometheus(HttpRequest(server_->metrics_port(), "GET", "/metrics").body);
+  EXPECT_GT(scraped.at("alignset_database_integrity_errors"), 0.0);
+  // Stats count what can be read instead of failing with DATA_LOSS.
+  {
+    auto stub = OwnStub(server_->address());
+    grpc::ClientContext ctx;
+    v1::CacheStatsResponse stats;
+    grpc::Status s = stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &stats);
+    ASSERT_TRUE(s.ok()) << s.error_message();
+    EXPECT_TRUE(stats.damaged());
+    EXPECT_EQ(stats.sets(), static_cast<int64_t>(keys.size() - lost.size()));
+  }
+  server_->Stop(SIGTERM);
+
+  // verify lists every unreadable key and exits 1.
+  const std::string cli = std::string(ALIGNSET_CLI_PATH) + " ";
+  auto verify = RunCommand(cli + "cache verify --db " + db);
+  EXPECT_EQ(verify.exit_code, 1) << verify.output;
+  for (const std::string& k : lost) {
+    EXPECT_NE(verify.output.find("DAMAGED " + k + "\n"), std::string::npos) << k << "\n" << verify.output;
+  }
+  size_t listed = 0;
+  for (size_t at = 0; (at = verify.output.find("DAMAGED ", at)) != std::string::npos; ++at) ++listed;
+  EXPECT_EQ(listed, lost.size()) << verify.output;
+
+  // recover copies out the rest; the new file verifies clean and serves.
+  const std::string fresh = dir_.path() + "/recovered.sqlite";
+  auto recover = RunCommand(cli + "cache recover --db " + db + " -o " + fresh);
+  ASSERT_EQ(recover.exit_code, 0) << recover.output;
+  EXPECT_NE(recover.output.find("recovered " + std::to_string(keys.size() - lost.size()) + " sets"),
+            std::string::npos)
+      << recover.output;
+  auto clean = RunCommand(cli + "cache verify --db " + fresh);
+  EXPECT_EQ(clean.exit_code, 0) << clean.output;
+  std::filesystem::rename(fresh, db);
+  StartServer(With(kFast, {"--metrics-listen", "127.0.0.1:0"}));
+  for (int i = 0; i < 100; ++i) {
+    const auto m = ParsePrometheus(HttpRequest(server_->metrics_port(), "GET", "/metrics").body);
+    if (m.at("alignset_integrity_checks_total") >= 1.0) break;
+    std::this_thread::sleep_for(100ms);
+  }
+  const auto m = ParsePrometheus(HttpRequest(server_->metrics_port(), "GET", "/metrics").body);
+  EXPECT_EQ(m.at("alignset_integrity_checks_total"), 1.0);
+  EXPECT_EQ(m.at("alignset_database_integrity_errors"), 0.0);
+  auto stub = OwnStub(server_->address());
+  grpc::ClientContext ctx;
+  v1::CacheStatsResponse stats;
+  ASSERT_TRUE(stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &stats).ok());
+  EXPECT_FALSE(stats.damaged());
+  EXPECT_EQ(stats.sets(), static_cast<int64_t>(keys.size() - lost.size()));
 }
 
 // ------------------------------------------------------------- item 8
