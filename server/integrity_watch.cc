@@ -22,6 +22,9 @@ void IntegrityWatch::CheckInBackground(const std::string& why) {
 
 void IntegrityWatch::OnWriteError(const Status& error) {
   if (write_error_seen_.exchange(true)) return;
+  // The damage is known already (the start-up check found it): the failed
+  // write is its consequence, counted in sets_not_stored.
+  if (metrics_->database_integrity_errors.load() > 0) return;
   CheckInBackground("after a failed write (" + error.message() + ")");
 }
 

@@ -88,7 +88,12 @@ StatusOr<std::vector<std::string>> QuickCheck(const std::string& path, int max_p
       break;
     }
     if (!*row) break;
-    const std::string line = stmt->Text(0);
+    std::string line = stmt->Text(0);
+    // SQLite's lines may span several ("*** in database main ***\nPage 14:
+    // ..."): one line each, for logs.
+    for (char& c : line) {
+      if (c == '\n' || c == '\r') c = ' ';
+    }
     if (line != "ok") problems.push_back(line);
   }
   return problems;
