@@ -60,7 +60,33 @@ void EngineIteration(benchmark::State& state, const std::string& kind) {
   state.counters["threads"] = BenchThreads();
 }
 
+// What a time slice costs the fast engine when the scheduler resumes a
+// paused optimization after another one ran on the engine: binding K again
+// (the resumed run's state is kept, so nothing else is recomputed).
+void SwitchFrequencies(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  FastEngine engine(BenchThreads());
+  const std::vector<Frequency> a =
+      BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({30.0}));
+  const std::vector<Frequency> b =
+      BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({12.0, 100.0}));
+  bool flip = false;
+  for (auto _ : state) {
+    engine.SetFrequencies(flip ? a : b);
+    flip = !flip;
+  }
+  state.counters["N"] = n;
+}
+
 void Register() {
+  for (int n : {4096, 65536}) {
+    benchmark::RegisterBenchmark("engine/fast_switch_k", SwitchFrequencies)
+        ->Arg(n)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Repetitions(5)
+        ->ReportAggregatesOnly(true);
+  }
   for (int n : {4096, 16384, 65536}) {
     auto* direct = benchmark::RegisterBenchmark("engine/direct", EngineIteration, "direct");
     direct->Arg(n)->UseRealTime()->Unit(benchmark::kMillisecond)->ReportAggregatesOnly(true);

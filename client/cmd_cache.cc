@@ -1,6 +1,6 @@
 // `alignset cache ...`: maintenance of SQLite cache files (export, import,
-// merge of precompute shards, verify, list). Works on the files directly, so
-// it needs no running server.
+// merge of precompute shards, verify, recover, list). Works on the files
+// directly, so it needs no running server.
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "client/commands.h"
+#include "storage/cache_recovery.h"
 #include "storage/set_cache.h"
 
 namespace alignset::cli {
@@ -23,7 +24,24 @@ struct CacheOptions {
   std::vector<std::string> files;
   std::optional<int64_t> n;
   std::optional<std::string> profile;
+  bool force = false;  // overwrite an existing OUT.partial
 };
+
+// OUT.partial (and its -wal/-shm) may be another run's work in progress:
+// removed only when asked to.
+Status ClearPartial(const std::string& tmp, bool force) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    if (!fs::exists(tmp + suffix, ec)) continue;
+    if (!force) {
+      return Status::InvalidArgument(tmp + suffix + " exists (an interrupted or running merge or "
+                                     "recover); remove it, or pass --force to overwrite it");
+    }
+    fs::remove(tmp + suffix, ec);
+  }
+  return Status::Ok();
+}
 
 // Local work: a bad argument or a missing file is a usage error (2), any
 // other failure (SQLite, the file system) a failure (1). Damaged sets found
@@ -95,7 +113,7 @@ int RunMerge(const CacheOptions& o) {
   // interrupted merge never leaves a partial FILE behind.
   const std::string tmp = o.out + ".partial";
   std::error_code ec;
-  for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(tmp + suffix, ec);
+  if (Status s = ClearPartial(tmp, o.force); !s.ok()) return Fail("merge", s);
   StatusOr<int64_t> corrupt = Status::Internal("not run");
   {
     auto cache = SetCache::Open(tmp);
@@ -113,17 +131,39 @@ int RunMerge(const CacheOptions& o) {
   return *corrupt > 0 ? kExitFailure : kExitOk;
 }
 
+// Every set is re-read past damaged pages (storage/cache_recovery.h): each
+// unreadable key is listed, with what SQLite and its quick_check said.
 int RunVerify(const CacheOptions& o) {
-  auto cache = OpenDb(o.db, true);
-  if (!cache.ok()) return Fail("verify", cache.status());
-  auto report = (*cache)->Verify();
-  if (!report.ok()) return Fail("verify", report.status());
-  for (const storage::SetKey& k : report->corrupt) {
+  if (!std::filesystem::exists(o.db)) return Fail("verify", Status::NotFound(o.db + " does not exist"));
+  auto check = storage::QuickCheck(o.db);
+  if (!check.ok()) return Fail("verify", check.status());
+  auto scan = storage::ScanForDamage(o.db);
+  if (!scan.ok()) return Fail("verify", scan.status());
+  for (const storage::SetKey& k : scan->damaged) {
     std::printf("DAMAGED %s\n", storage::KeyToString(k).c_str());
   }
-  std::printf("checked %lld sets, %zu damaged\n", static_cast<long long>(report->checked),
-              report->corrupt.size());
-  return report->corrupt.empty() ? kExitOk : kExitFailure;
+  for (const std::string& p : *check) std::printf("PAGE %s\n", p.c_str());
+  for (const std::string& p : scan->problems) std::printf("READ %s\n", p.c_str());
+  const bool damaged = !scan->damaged.empty() || !check->empty() || !scan->problems.empty();
+  std::printf("checked %lld sets: %lld readable, %zu damaged; %s\n",
+              static_cast<long long>(scan->readable + static_cast<int64_t>(scan->damaged.size())),
+              static_cast<long long>(scan->readable), scan->damaged.size(),
+              damaged ? "the file is damaged: 'alignset cache recover' copies the readable sets "
+                        "into a new file"
+                      : "no damage found");
+  return damaged ? kExitFailure : kExitOk;
+}
+
+// Copies every readable, checksum-valid set into a new file; the lost keys
+// are listed (they are recomputed on request).
+int RunRecover(const CacheOptions& o) {
+  if (!std::filesystem::exists(o.db)) return Fail("recover", Status::NotFound(o.db + " does not exist"));
+  auto report = storage::RecoverCache(o.db, o.out, o.force);
+  if (!report.ok()) return Fail("recover", report.status());
+  for (const storage::SetKey& k : report->lost) std::printf("LOST %s\n", storage::KeyToString(k).c_str());
+  std::printf("recovered %lld sets into %s; %zu lost\n", static_cast<long long>(report->recovered),
+              o.out.c_str(), report->lost.size());
+  return kExitOk;
 }
 
 std::string FormatTime(int64_t unix_seconds) {
@@ -179,7 +219,7 @@ CLI::App* AddSub(CLI::App* cache, const std::string& name, const std::string& de
 
 void AddCacheCommand(CLI::App& app) {
   CLI::App* cache = AddCommand(app, "cache",
-                               "maintain SQLite cache files (export, import, merge, verify, list);\n"
+                               "maintain SQLite cache files (export, import, merge, verify, recover, list);\n"
                                "works on the files directly, no server needed");
   cache->require_subcommand(1);
   cache->footer(
@@ -199,9 +239,21 @@ void AddCacheCommand(CLI::App& app) {
   c = AddSub(cache, "merge", "merge shard files into a new file", RunMerge, &o);
   c->add_option("-o,--out", o->out, "the new file (must not exist)")->required();
   c->add_option("SHARD", o->files, "shard files")->required();
+  c->add_flag("--force", o->force, "overwrite an existing OUT.partial");
 
-  c = AddSub(cache, "verify", "re-read every set and check its checksum", RunVerify, &o);
+  c = AddSub(cache, "verify",
+             "re-read every set past damaged pages, check checksums and SQLite's quick_check;\n"
+             "lists every damaged key (exit 1 when anything is damaged)",
+             RunVerify, &o);
   c->add_option("--db", o->db, "the cache file")->required();
+
+  c = AddSub(cache, "recover",
+             "copy every readable, checksum-valid set of a damaged cache into a new file\n"
+             "(stop the server first; then replace the old file with the new one)",
+             RunRecover, &o);
+  c->add_option("--db", o->db, "the damaged cache file")->required();
+  c->add_option("-o,--out", o->out, "the new file (must not exist)")->required();
+  c->add_flag("--force", o->force, "overwrite an existing OUT.partial");
 
   c = AddSub(cache, "list", "one line per cached set, then totals", RunList, &o);
   c->add_option("--db", o->db, "the cache file")->required();

@@ -28,6 +28,10 @@ int RunStats(const StatsOptions& o) {
   std::printf("sets              %lld (%lld one-direction, %lld two-direction), %.1f MiB\n",
               static_cast<long long>(stats->sets), static_cast<long long>(stats->one_direction_sets),
               static_cast<long long>(stats->two_direction_sets), stats->bytes / 1048576.0);
+  if (stats->damaged) {
+    std::printf("damaged           yes: the file has damaged pages, the counts cover the readable\n"
+                "                  sets (stop the server, run 'alignset cache recover')\n");
+  }
   std::printf("profile (N=4096)  %s\n", stats->profile_hint.c_str());
   std::printf("uptime            %.0f s\n", m.uptime_seconds);
   std::printf("requests          get %llu, watch %llu, precompute %llu, samples %llu, invalid %llu\n",

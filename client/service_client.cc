@@ -412,6 +412,7 @@ StatusOr<CacheInfo> ServiceClient::GetCacheStats(const CallOptions& call) {
   c.bytes = resp.bytes();
   c.one_direction_sets = resp.one_direction_sets();
   c.two_direction_sets = resp.two_direction_sets();
+  c.damaged = resp.damaged();
   c.database_path = resp.database_path();
   c.profile_hint = resp.profile_hint();
   c.metrics = ToMetrics(resp.metrics());

@@ -15,6 +15,7 @@ BUILD_PACKAGES=(
   libsqlite3-dev
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
   libspdlog-dev libfmt-dev libcli11-dev
+  libssl-dev libmicrohttpd-dev
 )
 # GoogleTest and Google Benchmark, the tools the tests drive (sqlite3, openssl for the TLS
 # test), Python with the packages of the Python client, its test, the plots and the

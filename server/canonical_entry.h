@@ -20,9 +20,13 @@ std::string EncodePoints(const PointSet& points);
 // filled table, which is guarded.
 class CanonicalEntry {
  public:
-  explicit CanonicalEntry(storage::SetRecord record) : record_(std::move(record)) {}
+  // `stored`: the record is in SQLite (false: optimized and served, but the
+  // write failed; responses say so).
+  explicit CanonicalEntry(storage::SetRecord record, bool stored = true)
+      : record_(std::move(record)), stored_(stored) {}
 
   const storage::SetRecord& record() const { return record_; }
+  bool stored() const { return stored_; }
   // The set aligned by `ops`, encoded; built once per element.
   std::shared_ptr<const std::string> Encoded(const AlignOps& ops) const;
   // What the entry may grow to: the points plus the four alignments a
@@ -31,6 +35,7 @@ class CanonicalEntry {
 
  private:
   storage::SetRecord record_;
+  const bool stored_;
   mutable std::mutex mu_;
   mutable std::array<std::shared_ptr<const std::string>, 8> encoded_;
 };

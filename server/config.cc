@@ -5,8 +5,9 @@
 #include <map>
 #include <vector>
 
-#include "core/util/number_text.h"
 #include "core/optimize/optimizer.h"
+#include "core/util/number_text.h"
+#include "server/listen_address.h"
 
 namespace alignset::server {
 namespace {
@@ -38,7 +39,8 @@ std::function<Status(ServerConfig&, const std::string&)> StringFlag(std::string 
 
 const std::vector<Flag>& Flags() {
   static const std::vector<Flag> flags = {
-      {"listen", "ADDR      address to listen on (default 127.0.0.1:50051; port 0 picks one)",
+      {"listen", "ADDR      address to listen on: HOST:PORT, [IPV6]:PORT or unix:PATH\n"
+                 "                     (default 127.0.0.1:50051; port 0 picks one)",
        StringFlag(&ServerConfig::listen)},
       {"db", "PATH          SQLite cache (default $ALIGNSET_DATA_DIR or ~/.local/share/alignset)",
        StringFlag(&ServerConfig::db_path)},
@@ -63,6 +65,23 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::seed, "seed", 0, INT64_MAX)},
       {"max-queue", "Q     optimizations allowed to wait (default 256)",
        IntFlag(&ServerConfig::max_queue, "max-queue", 1, 1000000)},
+      {"max-queue-per-client", "Q  optimizations one client (connection) may have waiting (default 64)",
+       IntFlag(&ServerConfig::max_queue_per_client, "max-queue-per-client", 1, 1000000)},
+      {"time-slice-ms", "T    a running optimization yields to another client's waiting work\n"
+                        "                     after T ms (default 500)",
+       IntFlag(&ServerConfig::time_slice_ms, "time-slice-ms", 0, 3600000)},
+      {"max-paused", "P      paused optimizations held in memory at once (default 16)",
+       IntFlag(&ServerConfig::max_paused, "max-paused", 0, 100000)},
+      {"max-waiting-calls", "W  GetAlignedSet/WatchAlignedSet calls that may wait at once (default 10000)",
+       IntFlag(&ServerConfig::max_waiting_calls, "max-waiting-calls", 1, 10000000)},
+      {"max-precompute-streams", "S  concurrent Precompute streams (default 4)",
+       IntFlag(&ServerConfig::max_precompute_streams, "max-precompute-streams", 1, 1024)},
+      {"max-batch-calls", "B  concurrent GetAlignedSets batches (default 16)",
+       IntFlag(&ServerConfig::max_batch_calls, "max-batch-calls", 1, 1024)},
+      {"quick-check", "0|1   check the cache file for damaged pages at start (default 1)",
+       IntFlag(&ServerConfig::quick_check, "quick-check", 0, 1)},
+      {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
+       StringFlag(&ServerConfig::metrics_listen)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
        IntFlag(&ServerConfig::memory_cache_mb, "memory-cache-mb", 0, 1 << 20)},
       {"max-request-bytes", "B  largest request message (default 1048576)",
@@ -147,6 +166,12 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
     return Status::InvalidArgument("--tls-cert and --tls-key go together");
   }
   if (config.listen.empty()) return Status::InvalidArgument("--listen is empty");
+  if (auto a = ParseListenAddress(config.listen, "--listen"); !a.ok()) return a.status();
+  if (!config.metrics_listen.empty()) {
+    auto m = ParseListenAddress(config.metrics_listen, "--metrics-listen");
+    if (!m.ok()) return m.status();
+    if (m->unix_socket) return Status::InvalidArgument("--metrics-listen takes HOST:PORT");
+  }
   return config;
 }
 

@@ -26,6 +26,23 @@ struct ServerConfig {
   // Optimizations waiting for a worker; a request needing one more gets
   // RESOURCE_EXHAUSTED.
   int max_queue = 256;
+  // Fairness (Scheduler): a client (a connection) may have this many
+  // optimizations waiting; a running optimization yields its worker to
+  // another client's waiting work after this many milliseconds; at most this
+  // many paused optimizations are held in memory.
+  int max_queue_per_client = 64;
+  int time_slice_ms = 500;
+  int max_paused = 16;
+  // GetAlignedSet / WatchAlignedSet calls that may wait at once (they hold
+  // no thread, but memory), and Precompute streams and GetAlignedSets
+  // batches (each holds a thread).
+  int max_waiting_calls = 10000;
+  int max_precompute_streams = 4;
+  int max_batch_calls = 16;
+  // PRAGMA quick_check of the cache file at start (in the background).
+  int quick_check = 1;
+  // Prometheus text exposition on HOST:PORT (GET /metrics); empty: off.
+  std::string metrics_listen;
   // Decoded canonical sets (and their encoded alignments) kept in memory.
   int64_t memory_cache_mb = 512;
   // Largest request message accepted (larger: RESOURCE_EXHAUSTED from gRPC).

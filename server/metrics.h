@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <mutex>
 
+#include "server/histogram.h"
+
 namespace alignset::server {
 
 struct MetricsSnapshot {
@@ -23,6 +25,13 @@ struct MetricsSnapshot {
   uint64_t optimizations_failed = 0;
   uint64_t shared_waits = 0;
   uint64_t rejected_queue_full = 0;
+  uint64_t requests_unauthenticated = 0;
+  uint64_t sets_not_stored = 0;
+  uint64_t rejected_client_limit = 0;
+  uint64_t rejected_waiting_limit = 0;
+  uint64_t optimizations_paused = 0;
+  uint64_t database_integrity_errors = 0;
+  uint32_t paused = 0;
   uint32_t queue_length = 0;
   uint32_t running = 0;
   double optimize_seconds_total = 0.0;
@@ -49,8 +58,36 @@ class Metrics {
   std::atomic<uint64_t> optimizations_failed{0};
   std::atomic<uint64_t> shared_waits{0};
   std::atomic<uint64_t> rejected_queue_full{0};
+  // Calls refused for a missing or wrong bearer token; the request counters
+  // above count authorized calls only.
+  std::atomic<uint64_t> requests_unauthenticated{0};
+  // Sets optimized and served but not written to SQLite (read-only or full
+  // disk, damaged pages): each is recomputed after a restart.
+  std::atomic<uint64_t> sets_not_stored{0};
+  // New jobs refused because their client had --max-queue-per-client
+  // waiting.
+  std::atomic<uint64_t> rejected_client_limit{0};
+  // Calls refused at --max-waiting-calls.
+  std::atomic<uint64_t> rejected_waiting_limit{0};
+  // Slices that ended with the job yielding its worker (fairness).
+  std::atomic<uint64_t> optimizations_paused{0};
+  // False when the start-up write probe failed (SetCache::ProbeWrite).
+  std::atomic<bool> database_writable{true};
+  // Database damage found by PRAGMA quick_check (at start, and after the
+  // first failed write): the number of problems it listed, 0 when clean.
+  std::atomic<uint64_t> database_integrity_errors{0};
+  std::atomic<uint64_t> integrity_checks{0};
+
+  // Latency of each call from its arrival to its end (set, error or
+  // cancel), and of each optimization (its slices).
+  Histogram latency_get{Histogram::LatencyBounds()};
+  Histogram latency_watch{Histogram::LatencyBounds()};
+  Histogram latency_precompute{Histogram::LatencyBounds()};
+  Histogram latency_samples{Histogram::LatencyBounds()};
+  Histogram optimization_seconds{Histogram::LatencyBounds()};
 
   void RecordOptimization(double seconds) {
+    optimization_seconds.Observe(seconds);
     std::lock_guard<std::mutex> lock(mu_);
     optimize_seconds_total_ += seconds;
     if (seconds > optimize_seconds_max_) optimize_seconds_max_ = seconds;
@@ -74,6 +111,12 @@ class Metrics {
     s.optimizations_failed = optimizations_failed.load();
     s.shared_waits = shared_waits.load();
     s.rejected_queue_full = rejected_queue_full.load();
+    s.requests_unauthenticated = requests_unauthenticated.load();
+    s.sets_not_stored = sets_not_stored.load();
+    s.rejected_client_limit = rejected_client_limit.load();
+    s.optimizations_paused = optimizations_paused.load();
+    s.rejected_waiting_limit = rejected_waiting_limit.load();
+    s.database_integrity_errors = database_integrity_errors.load();
     s.queue_length = queue_length;
     s.running = running;
     {

@@ -2,7 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <ctime>
+#include <iterator>
 
 #include "core/optimize/realization.h"
 
@@ -10,16 +12,22 @@ namespace alignset::server {
 
 using Clock = std::chrono::steady_clock;
 
-// Everything in a Job is guarded by Scheduler::mu_.
+// Everything in a Job is guarded by Scheduler::mu_, except `run` while the
+// job is running: then only its worker touches it.
 struct Job {
   storage::SetKey key;
-  std::string name;  // KeyString(key), for the maps and the logs
+  std::string name;    // KeyString(key), for the maps and the logs
+  std::string client;  // who created it: the fairness between clients
   int priority = 0;
   uint64_t seq = 0;
   int waiters = 0;
   JobView::State state = JobView::State::kQueued;
+  bool paused = false;  // waiting again, with `run` holding its state
   ProgressInfo progress;
-  Clock::time_point started;
+  bool ever_ran = false;
+  Clock::time_point started;      // first slice
+  Clock::time_point slice_start;  // current slice
+  double run_seconds = 0.0;       // the slices so far
   uint64_t version = 0;
   // Set when the job was given up (no waiters left, or shutdown): it has
   // left `inflight_`, so a new request starts a new job.
@@ -28,12 +36,22 @@ struct Job {
   Status status;
   std::shared_ptr<const CanonicalEntry> entry;
   bool from_cache = false;
+  std::unique_ptr<OptimizerRun> run;
+  std::map<const Ticket*, std::function<void()>> on_done;
 };
+
+namespace {
+
+// Logs the 1st, 2nd, 4th, 8th, ... occurrence: a flood of refusals cannot
+// flood the log, and the count in the line says how many there were.
+bool LogThisOne(uint64_t count) { return (count & (count - 1)) == 0; }
+
+}  // namespace
 
 // ---------------------------------------------------------------- Ticket
 
 Ticket::~Ticket() {
-  if (job_) scheduler_->Release(job_);
+  if (job_) scheduler_->Release(job_, this);
 }
 
 bool Ticket::Done() const {
@@ -63,14 +81,9 @@ JobView Ticket::View() const {
   v.state = job_->state;
   v.version = job_->version;
   v.progress = job_->progress;
-  if (job_->state == JobView::State::kQueued) {
-    for (const auto& q : scheduler_->queue_) {
-      if (std::get<2>(q) == job_.get()) break;
-      ++v.queue_position;
-    }
-  } else {
-    v.elapsed_seconds = std::chrono::duration<double>(Clock::now() - job_->started).count();
-  }
+  v.paused = job_->paused;
+  if (job_->state == JobView::State::kQueued) v.queue_position = scheduler_->PositionLocked(*job_);
+  if (job_->ever_ran) v.elapsed_seconds = std::chrono::duration<double>(Clock::now() - job_->started).count();
   return v;
 }
 
@@ -88,6 +101,17 @@ bool Ticket::from_cache() const {
   return job_->from_cache;
 }
 
+void Ticket::OnDone(std::function<void()> fn) {
+  if (job_) {
+    std::lock_guard<std::mutex> lock(scheduler_->mu_);
+    if (job_->state != JobView::State::kDone) {
+      job_->on_done[this] = std::move(fn);
+      return;
+    }
+  }
+  fn();
+}
+
 // ------------------------------------------------------------- Scheduler
 
 Scheduler::Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics)
@@ -97,8 +121,17 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
                                                        storage::SetCache* cache, Metrics* metrics) {
   if (options.workers < 1) return Status::InvalidArgument("workers must be at least 1");
   if (options.max_queue < 1) return Status::InvalidArgument("max_queue must be at least 1");
+  if (options.max_queue_per_client < 1) return Status::InvalidArgument("max_queue_per_client must be at least 1");
+  if (options.max_paused < 0) return Status::InvalidArgument("max_paused must be at least 0");
+  if (options.time_slice.count() < 0) return Status::InvalidArgument("time_slice must be at least 0");
   if (Status s = ValidateOptions(options.optimizer); !s.ok()) return s;
-  std::unique_ptr<Scheduler> s(new Scheduler(options, cache, metrics));
+  Options o = options;
+  // A progress callback every iteration: it is where a job yields its worker
+  // (fairness) and notices that its waiters left. It costs one uncontended
+  // lock per iteration and does not change the set (progress_every is not
+  // part of the profile).
+  o.optimizer.progress_every = 1;
+  std::unique_ptr<Scheduler> s(new Scheduler(o, cache, metrics));
   for (int i = 0; i < options.workers; ++i) {
     auto engine = options.engine_factory
                       ? options.engine_factory()
@@ -144,7 +177,97 @@ StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
   return stored.status();
 }
 
-StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key, Priority priority) {
+// ------------------------------------------------- the queue (mu_ held)
+
+void Scheduler::EnqueueLocked(Job* job) {
+  clients_[job->client].waiting[job->priority].insert({job->seq, job});
+  ++waiting_[job->priority];
+  if (job->paused) ++paused_;
+}
+
+void Scheduler::DequeueLocked(Job* job) {
+  auto it = clients_.find(job->client);
+  if (it == clients_.end() || it->second.waiting[job->priority].erase({job->seq, job}) == 0) return;
+  --waiting_[job->priority];
+  if (job->paused) --paused_;
+}
+
+void Scheduler::LeaveClientLocked(Job* job) {
+  auto it = clients_.find(job->client);
+  if (it != clients_.end() && --it->second.jobs <= 0) clients_.erase(it);
+}
+
+double Scheduler::ServedLocked(const ClientQueue& q, Clock::time_point now) const {
+  double served = q.used;
+  for (const Job* j : q.running) served += std::chrono::duration<double>(now - j->slice_start).count();
+  return served;
+}
+
+bool Scheduler::BeforeLocked(const ClientQueue& a, const ClientQueue& b, int c, Clock::time_point now) const {
+  // Less served first; on a tie, a client that is not running now; then the
+  // older job.
+  return std::make_tuple(ServedLocked(a, now), a.running.size(), a.waiting[c].begin()->first) <
+         std::make_tuple(ServedLocked(b, now), b.running.size(), b.waiting[c].begin()->first);
+}
+
+Job* Scheduler::PickLocked() {
+  const auto now = Clock::now();
+  for (int c = 0; c < 2; ++c) {
+    if (waiting_[c] == 0) continue;
+    const ClientQueue* best = nullptr;
+    for (const auto& [name, q] : clients_) {
+      if (!q.waiting[c].empty() && (best == nullptr || BeforeLocked(q, *best, c, now))) best = &q;
+    }
+    return best->waiting[c].begin()->second;
+  }
+  return nullptr;
+}
+
+bool Scheduler::ShouldYieldLocked(const Job& job, Clock::time_point now) const {
+  // At the bound no job yields until a paused one has resumed: the paused
+  // states are what costs memory.
+  if (paused_ >= static_cast<uint32_t>(options_.max_paused)) return false;
+  for (int h = 0; h < job.priority; ++h) {
+    if (waiting_[h] > 0) return true;  // interactive work waits behind a batch job
+  }
+  auto mine = clients_.find(job.client);
+  if (mine == clients_.end()) return false;
+  const double used = ServedLocked(mine->second, now);
+  const double slice = std::chrono::duration<double>(options_.time_slice).count();
+  for (const auto& [name, q] : clients_) {
+    if (&q != &mine->second && !q.waiting[job.priority].empty() && ServedLocked(q, now) + slice <= used) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// An estimate of where the job stands in the order PickLocked will take the
+// waiting jobs: every job of a higher priority, then rounds in which each
+// client with work runs one job, the least-served client first.
+size_t Scheduler::PositionLocked(const Job& job) const {
+  const int c = job.priority;
+  size_t position = 0;
+  for (int h = 0; h < c; ++h) position += waiting_[h];
+  auto mine = clients_.find(job.client);
+  if (mine == clients_.end()) return position;
+  const auto& own = mine->second.waiting[c];
+  auto at = own.find({job.seq, const_cast<Job*>(&job)});
+  if (at == own.end()) return position;
+  const size_t round = static_cast<size_t>(std::distance(own.begin(), at));
+  const auto now = Clock::now();
+  for (const auto& [name, q] : clients_) {
+    if (&q == &mine->second || q.waiting[c].empty()) continue;
+    const bool ahead = BeforeLocked(q, mine->second, c, now);
+    position += std::min(q.waiting[c].size(), round + (ahead ? 1 : 0));
+  }
+  return position + round;
+}
+
+// ------------------------------------------------------------ requests
+
+StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key, Priority priority,
+                                                     const std::string& client) {
   const std::string name = KeyString(key);
   if (auto hit = lru_.Get(name)) {
     metrics_->cache_hits_memory.fetch_add(1, std::memory_order_relaxed);
@@ -155,9 +278,9 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
   auto join = [&](const std::shared_ptr<Job>& job) {
     ++job->waiters;
     if (job->state == JobView::State::kQueued && prio < job->priority) {
-      queue_.erase({job->priority, job->seq, job.get()});
+      DequeueLocked(job.get());
       job->priority = prio;
-      queue_.insert({job->priority, job->seq, job.get()});
+      EnqueueLocked(job.get());
       ++job->version;
     }
     metrics_->cache_misses.fetch_add(1, std::memory_order_relaxed);
@@ -193,109 +316,213 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
     metrics_->cache_hits_memory.fetch_add(1, std::memory_order_relaxed);
     return Ready(std::move(hit));
   }
-  if (queue_.size() >= static_cast<size_t>(options_.max_queue)) {
-    metrics_->rejected_queue_full.fetch_add(1, std::memory_order_relaxed);
-    spdlog::warn("queue full ({} waiting), rejected {}", queue_.size(), name);
-    return Status::ResourceExhausted("the optimization queue is full (" +
-                                     std::to_string(queue_.size()) + " waiting); retry later");
+  const size_t waiting = waiting_[0] + waiting_[1];
+  if (waiting >= static_cast<size_t>(options_.max_queue)) {
+    const uint64_t n = metrics_->rejected_queue_full.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (LogThisOne(n)) spdlog::warn("queue full ({} waiting), rejected {} ({} so far)", waiting, name, n);
+    return Status::ResourceExhausted("the optimization queue is full (" + std::to_string(waiting) +
+                                     " waiting, --max-queue); retry later");
+  }
+  if (auto c = clients_.find(client); c != clients_.end()) {
+    const size_t mine = c->second.waiting[0].size() + c->second.waiting[1].size();
+    if (mine >= static_cast<size_t>(options_.max_queue_per_client)) {
+      const uint64_t n = metrics_->rejected_client_limit.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (LogThisOne(n)) {
+        spdlog::warn("client at its limit ({} waiting), rejected {} ({} so far)", mine, name, n);
+      }
+      return Status::ResourceExhausted("this client already has " + std::to_string(mine) +
+                                       " optimizations waiting (--max-queue-per-client); retry when "
+                                       "some have finished");
+    }
   }
   auto job = std::make_shared<Job>();
   job->key = key;
   job->name = name;
+  job->client = client;
   job->priority = prio;
   job->seq = next_seq_++;
   job->waiters = 1;
   inflight_.emplace(name, job);
-  queue_.insert({job->priority, job->seq, job.get()});
+  auto [entry, is_new] = clients_.try_emplace(client);
+  if (is_new) {
+    // A client that arrives starts level with the least-served one already
+    // there: a new connection earns no credit over those that kept working.
+    const auto now = Clock::now();
+    bool first = true;
+    for (const auto& [other, q] : clients_) {
+      if (&q == &entry->second) continue;
+      const double served = ServedLocked(q, now);
+      entry->second.used = first ? served : std::min(entry->second.used, served);
+      first = false;
+    }
+  }
+  ++entry->second.jobs;
+  EnqueueLocked(job.get());
   metrics_->cache_misses.fetch_add(1, std::memory_order_relaxed);
   spdlog::info("queued {} ({}, position {})", name,
-               priority == Priority::kInteractive ? "interactive" : "batch", queue_.size() - 1);
+               priority == Priority::kInteractive ? "interactive" : "batch", PositionLocked(*job));
   work_cv_.notify_one();
   return std::unique_ptr<Ticket>(new Ticket(this, job, nullptr));
 }
 
-void Scheduler::Release(const std::shared_ptr<Job>& job) {
-  std::lock_guard<std::mutex> lock(mu_);
-  if (--job->waiters > 0 || job->state != JobView::State::kQueued) return;
-  // The last waiter left a job that has not started: drop it. A running job
-  // notices at its next progress callback.
-  queue_.erase({job->priority, job->seq, job.get()});
-  job->abandoned = true;
-  job->status = Status::Cancelled("every waiter left");
-  metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
-  spdlog::info("withdrawn {} (no waiters left before it ran)", job->name);
-  FinishLocked(job);
+void Scheduler::Release(const std::shared_ptr<Job>& job, const Ticket* ticket) {
+  Callbacks callbacks;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    job->on_done.erase(ticket);
+    if (--job->waiters > 0 || job->state != JobView::State::kQueued) return;
+    // The last waiter left a job that is not running (queued, or paused
+    // between slices): drop it. A running job notices at its next progress
+    // callback.
+    DequeueLocked(job.get());
+    job->abandoned = true;
+    job->status = Status::Cancelled("every waiter left");
+    metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
+    spdlog::info("withdrawn {} (no waiters left {})", job->name,
+                 job->paused ? "while it was paused" : "before it ran");
+    FinishLocked(job, &callbacks);
+  }
+  for (auto& fn : callbacks) fn();
 }
 
-void Scheduler::FinishLocked(const std::shared_ptr<Job>& job) {
+void Scheduler::FinishLocked(const std::shared_ptr<Job>& job, Callbacks* callbacks) {
   job->state = JobView::State::kDone;
+  job->paused = false;
+  job->run.reset();
   ++job->version;
   if (auto it = inflight_.find(job->name); it != inflight_.end() && it->second == job) {
     inflight_.erase(it);
   }
+  LeaveClientLocked(job.get());
   job->cv.notify_all();
+  for (auto& [ticket, fn] : job->on_done) callbacks->push_back(std::move(fn));
+  job->on_done.clear();
 }
 
+// ------------------------------------------------------------- workers
+
 void Scheduler::WorkerLoop(SpectralEngine* engine) {
+  // The job whose frequency set this worker's engine holds: resuming it
+  // right after its own slice skips setting K again.
+  uint64_t engine_job = UINT64_MAX;
   for (;;) {
     std::shared_ptr<Job> job;
     {
       std::unique_lock<std::mutex> lock(mu_);
-      work_cv_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      work_cv_.wait(lock, [&] { return stopping_ || waiting_[0] + waiting_[1] > 0; });
       if (stopping_) return;
-      Job* next = std::get<2>(*queue_.begin());
-      queue_.erase(queue_.begin());
+      Job* next = PickLocked();
       job = inflight_.at(next->name);
+      DequeueLocked(job.get());
+      job->paused = false;
       job->state = JobView::State::kRunning;
-      job->started = Clock::now();
+      const auto now = Clock::now();
+      if (!job->ever_ran) {
+        job->ever_ran = true;
+        job->started = now;
+      }
+      job->slice_start = now;
+      clients_[job->client].running.insert(job.get());
       ++job->version;
       ++running_;
       job->cv.notify_all();
     }
-    RunJob(job, engine);
-    std::lock_guard<std::mutex> lock(mu_);
-    --running_;
-    FinishLocked(job);
+    const SliceEnd end = RunSlice(job, engine, engine_job == job->seq);
+    engine_job = job->seq;
+    Callbacks callbacks;
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      --running_;
+      if (auto c = clients_.find(job->client); c != clients_.end()) {
+        c->second.used += std::chrono::duration<double>(Clock::now() - job->slice_start).count();
+        c->second.running.erase(job.get());
+      }
+      if (end == SliceEnd::kPaused && job->waiters > 0 && !stopping_) {
+        job->state = JobView::State::kQueued;
+        job->paused = true;
+        EnqueueLocked(job.get());
+        ++job->version;
+        job->cv.notify_all();
+        work_cv_.notify_one();
+      } else {
+        if (end == SliceEnd::kPaused) {  // its waiters left (or shutdown) as it paused
+          job->abandoned = true;
+          job->status = stopping_ ? Status::Unavailable("the server is shutting down")
+                                  : Status::Cancelled("every waiter left");
+          metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
+        }
+        FinishLocked(job, &callbacks);
+      }
+    }
+    for (auto& fn : callbacks) fn();
   }
 }
 
-void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) {
+Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine,
+                                        bool engine_holds_k) {
   const storage::SetKey& key = job->key;
-  // Another server process (or an earlier run) may have stored it by now.
-  if (auto stored = cache_->Get(key); stored.ok()) {
-    auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
-    lru_.Put(job->name, entry);
-    metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
-    std::lock_guard<std::mutex> lock(mu_);
-    job->entry = std::move(entry);
-    job->from_cache = true;
-    return;
+  if (!job->run) {
+    // Another server process (or an earlier run) may have stored it by now.
+    if (auto stored = cache_->Get(key); stored.ok()) {
+      auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
+      lru_.Put(job->name, entry);
+      metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
+      std::lock_guard<std::mutex> lock(mu_);
+      job->entry = std::move(entry);
+      job->from_cache = true;
+      return SliceEnd::kDone;
+    }
+    OptimizationProblem problem;
+    problem.n = key.n;
+    problem.directions = {static_cast<double>(key.dirs.phi1)};
+    if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
+    problem.seed = RealizationSeed(options_.seed, key.realization);
+    auto run = OptimizerRun::Create(problem, options_.optimizer);
+    if (!run.ok()) {
+      metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
+      spdlog::error("optimize failed {}: {}", job->name, run.status().message());
+      std::lock_guard<std::mutex> lock(mu_);
+      job->status = Status::Internal("optimization failed: " + run.status().message());
+      return SliceEnd::kDone;
+    }
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      job->run = std::move(run).value();
+    }
+    metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
+    spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),
+                 EffectiveMaxIterations(options_.optimizer, key.n, key.dirs.count));
+  } else {
+    spdlog::debug("optimize resume {} at iteration {}", job->name, job->run->iteration());
   }
 
-  OptimizationProblem problem;
-  problem.n = key.n;
-  problem.directions = {static_cast<double>(key.dirs.phi1)};
-  if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
-  problem.seed = RealizationSeed(options_.seed, key.realization);
-  metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-  spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),
-               EffectiveMaxIterations(options_.optimizer, key.n, key.dirs.count));
   const auto t0 = Clock::now();
-  auto result = Optimize(problem, options_.optimizer, *engine, [&](const ProgressInfo& p) {
-    std::lock_guard<std::mutex> lock(mu_);
-    job->progress = p;
-    ++job->version;
-    job->cv.notify_all();
-    if (job->waiters > 0 && !stopping_) return true;
-    // Given up: leave inflight_ now so that a request arriving from here on
-    // starts a new job instead of joining one that is stopping.
-    job->abandoned = true;
-    if (auto it = inflight_.find(job->name); it != inflight_.end() && it->second == job) {
-      inflight_.erase(it);
-    }
-    return false;
-  });
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  const OptimizerRun::Outcome outcome =
+      job->run->Resume(*engine, engine_holds_k, [&](const ProgressInfo& p) {
+        std::lock_guard<std::mutex> lock(mu_);
+        job->progress = p;
+        ++job->version;
+        job->cv.notify_all();
+        if (job->waiters > 0 && !stopping_) {
+          return ShouldYieldLocked(*job, Clock::now()) ? RunControl::kPause : RunControl::kContinue;
+        }
+        // Given up: leave inflight_ now so that a request arriving from here
+        // on starts a new job instead of joining one that is stopping.
+        job->abandoned = true;
+        if (auto it = inflight_.find(job->name); it != inflight_.end() && it->second == job) {
+          inflight_.erase(it);
+        }
+        return RunControl::kCancel;
+      });
+  job->run_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  if (outcome == OptimizerRun::Outcome::kPaused) {
+    metrics_->optimizations_paused.fetch_add(1, std::memory_order_relaxed);
+    spdlog::debug("optimize pause {} at iteration {} ({:.2f} s so far)", job->name, job->run->iteration(),
+                  job->run_seconds);
+    return SliceEnd::kPaused;
+  }
+  OptimizationResult result = job->run->TakeResult();
+  const double seconds = job->run_seconds;
 
   Status status;
   std::shared_ptr<const CanonicalEntry> entry;
@@ -305,55 +532,64 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
     abandoned = job->abandoned;
     stopping = stopping_;
   }
-  if (!result.ok()) {
-    metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
-    spdlog::error("optimize failed {}: {}", job->name, result.status().message());
-    status = Status::Internal("optimization failed: " + result.status().message());
-  } else if (abandoned || result->stop_reason == StopReason::kCancelled) {
+  if (abandoned || result.stop_reason == StopReason::kCancelled) {
     metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
     spdlog::info("optimize cancelled {} after {} iterations ({:.2f} s): {}", job->name,
-                 result->iterations, seconds, stopping ? "shutdown" : "no waiters left");
+                 result.iterations, seconds, stopping ? "shutdown" : "no waiters left");
     status = stopping ? Status::Unavailable("the server is shutting down")
-                       : Status::Cancelled("every waiter left");
+                      : Status::Cancelled("every waiter left");
   } else {
     storage::SetRecord record;
     record.key = key;
-    record.points = std::move(result->points);
-    record.loss = result->final_loss;
-    record.iterations = result->iterations;
+    record.points = std::move(result.points);
+    record.loss = result.final_loss;
+    record.iterations = result.iterations;
     record.optimize_seconds = seconds;
     record.engine = engine->name();
     record.created_unix = static_cast<int64_t>(std::time(nullptr));
+    bool stored = true;
     if (Status put = cache_->Put(record); !put.ok()) {
       // The set is still good: serve it, but say loudly that it was not kept.
+      stored = false;
+      metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
       spdlog::error("cache write {}: {} (served, not stored)", job->name, put.message());
+      if (options_.on_write_error) options_.on_write_error(put);
     }
     metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
     metrics_->RecordOptimization(seconds);
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
                  job->name, record.loss.total, record.loss.spectrum, record.loss.sw,
                  record.iterations, seconds);
-    entry = std::make_shared<const CanonicalEntry>(std::move(record));
+    entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
     lru_.Put(job->name, entry);
   }
   std::lock_guard<std::mutex> lock(mu_);
   job->status = status;
   job->entry = std::move(entry);
+  return SliceEnd::kDone;
 }
 
 void Scheduler::BeginShutdown() {
-  std::lock_guard<std::mutex> lock(mu_);
-  if (stopping_) return;
-  stopping_ = true;
-  std::vector<std::shared_ptr<Job>> queued;
-  for (const auto& q : queue_) queued.push_back(inflight_.at(std::get<2>(q)->name));
-  queue_.clear();
-  for (const auto& job : queued) {
-    job->status = Status::Unavailable("the server is shutting down");
-    FinishLocked(job);
+  Callbacks callbacks;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (stopping_) return;
+    stopping_ = true;
+    std::vector<std::shared_ptr<Job>> queued;
+    for (auto& [client, q] : clients_) {
+      for (auto& w : q.waiting) {
+        for (const auto& [seq, job] : w) queued.push_back(inflight_.at(job->name));
+      }
+    }
+    for (const auto& job : queued) DequeueLocked(job.get());
+    for (const auto& job : queued) {
+      job->status = Status::Unavailable("the server is shutting down");
+      FinishLocked(job, &callbacks);
+    }
+    if (!queued.empty()) spdlog::info("shutdown: dropped {} queued optimizations", queued.size());
+    work_cv_.notify_all();
   }
-  if (!queued.empty()) spdlog::info("shutdown: dropped {} queued optimizations", queued.size());
-  work_cv_.notify_all();
+  for (auto& fn : callbacks) fn();
 }
 
 void Scheduler::Shutdown() {
@@ -365,12 +601,17 @@ void Scheduler::Shutdown() {
 
 uint32_t Scheduler::queue_length() const {
   std::lock_guard<std::mutex> lock(mu_);
-  return static_cast<uint32_t>(queue_.size());
+  return static_cast<uint32_t>(waiting_[0] + waiting_[1]);
 }
 
 uint32_t Scheduler::running() const {
   std::lock_guard<std::mutex> lock(mu_);
   return running_;
+}
+
+uint32_t Scheduler::paused() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return paused_;
 }
 
 }  // namespace alignset::server

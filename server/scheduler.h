@@ -23,15 +23,16 @@
 namespace alignset::server {
 
 // Interactive requests (GetAlignedSet, WatchAlignedSet) run before batch
-// precompute; within a priority, first come first served.
+// precompute; within a priority, clients take turns (see Scheduler).
 enum class Priority { kInteractive = 0, kBatch = 1 };
 
 struct JobView {
   enum class State { kQueued, kRunning, kDone };
   State state = State::kDone;
-  size_t queue_position = 0;  // while queued: jobs ahead of it
-  ProgressInfo progress;      // while running: the last progress callback
-  double elapsed_seconds = 0.0;  // since it started running
+  size_t queue_position = 0;  // while queued: jobs that will run before it
+  bool paused = false;        // queued again after running a slice
+  ProgressInfo progress;      // since it first ran: the last progress callback
+  double elapsed_seconds = 0.0;  // since it first started running
   uint64_t version = 0;          // changes whenever anything above does
 };
 
@@ -58,6 +59,11 @@ class Ticket {
   StatusOr<std::shared_ptr<const CanonicalEntry>> Result() const;
   // True when no optimization ran for this ticket (memory or SQLite hit).
   bool from_cache() const;
+  // Runs `fn` once the ticket is done: at once (in this thread) when it
+  // already is, else in the thread that finishes the job, outside the
+  // scheduler's lock. Not called once the ticket is destroyed. At most one
+  // per ticket. For waiters that hold no thread (the callback API).
+  void OnDone(std::function<void()> fn);
 
  private:
   friend class Scheduler;
@@ -69,19 +75,44 @@ class Ticket {
 };
 
 // Turns "I need the canonical set for this key" into at most one optimization
-// per key, on a bounded pool of workers.
+// per key, on a bounded pool of workers shared fairly between clients.
 //
 // Single flight: all tickets for a key that is queued or running share its one
 // job. The waiter rule: a job lives while at least one ticket holds it (an
 // interactive request, a watch stream, or a precompute stream for its batch
 // item). When the last ticket goes (its client cancelled, hit its deadline or
 // disconnected), a queued job leaves the queue, and a running one is stopped
-// at its optimizer's next progress callback (which returns false); nothing is
-// stored for it. A later request for the key starts afresh.
+// at its optimizer's next progress callback; nothing is stored for it. A
+// later request for the key starts afresh.
 //
 // Priority: interactive before batch; a batch job that an interactive request
-// joins is promoted (keeping its place in arrival order). The queue is bounded: a request that would add a job to
-// a full queue gets RESOURCE_EXHAUSTED (joining an existing job always works).
+// joins is promoted (keeping its place in arrival order).
+//
+// Fairness: a job belongs to the client that created it (the service names
+// a client by its connection). Each client with work has a service account,
+// the seconds its jobs have run on a worker; a client that arrives starts
+// level with the least-served client already there (so reconnecting earns
+// nothing). Within a priority the next job comes from the least-served
+// client, and within one client jobs run in arrival order. A running job
+// yields its worker, at a progress callback (every iteration), when work of
+// a higher priority is waiting, or when another client with work of its
+// priority waiting has been served at least `time_slice` less than its own
+// client (the time slice is the granularity that keeps two long-running
+// clients from switching every iteration). A job that yields is paused with
+// its whole state (OptimizerRun) and goes back to the queue; when it is
+// picked again it resumes where it stopped, and its set is bit for bit the
+// one an uninterrupted run makes. At most `max_paused` jobs are held paused
+// (their state is about 80 bytes a point); at that bound no job yields until
+// a paused one has resumed. So a client that asks for a small set while
+// another keeps the workers busy waits at most one time slice (plus one
+// iteration of the job it displaces) before its job runs, and then runs for
+// at least two time slices before it can be displaced in turn, however much
+// the other client queued. Clients that open many connections get a share
+// per connection (within --max-queue); --max-queue-per-client bounds each.
+//
+// Bounds: `max_queue` waiting jobs in all, `max_queue_per_client` per client;
+// a request that would add a job past either gets RESOURCE_EXHAUSTED
+// (joining an existing job always works).
 //
 // Every finished set is stored in SQLite in one transaction (SetCache::Put)
 // before any waiter sees it, then kept decoded in an in-memory LRU.
@@ -92,9 +123,14 @@ class Scheduler {
     int threads_per_worker = 0;
     EngineKind engine = EngineKind::kAuto;
     int max_queue = 256;
+    int max_queue_per_client = 64;
+    std::chrono::milliseconds time_slice{500};
+    int max_paused = 16;
     OptimizerOptions optimizer;
     uint64_t seed = 1;
     size_t memory_cache_bytes = size_t{512} << 20;
+    // Called (from a worker) when a finished set could not be written.
+    std::function<void(const Status&)> on_write_error;
     // Makes each worker's engine; unset: MakeSpectralEngine(engine,
     // threads_per_worker). Tests put an engine here that they can hold.
     std::function<StatusOr<std::unique_ptr<SpectralEngine>>()> engine_factory;
@@ -114,9 +150,11 @@ class Scheduler {
   std::string ProfileFor(uint32_t n) const;
   const Options& options() const { return options_; }
 
-  // A hit (memory, then SQLite), else a share in the key's job, queued if new.
-  // A row failing its checksum is logged, counted and treated as a miss.
-  StatusOr<std::unique_ptr<Ticket>> Acquire(const storage::SetKey& key, Priority priority);
+  // A hit (memory, then SQLite), else a share in the key's job, queued if new
+  // and owned by `client`. A row failing its checksum is logged, counted and
+  // treated as a miss.
+  StatusOr<std::unique_ptr<Ticket>> Acquire(const storage::SetKey& key, Priority priority,
+                                            const std::string& client = "");
   // Whether the set is stored (no decode, no checksum): precompute's skip test.
   StatusOr<bool> IsStored(const storage::SetKey& key);
 
@@ -129,14 +167,38 @@ class Scheduler {
 
   uint32_t queue_length() const;
   uint32_t running() const;
+  uint32_t paused() const;
 
  private:
   friend class Ticket;
+  // A client's service account and waiting jobs, per priority, in arrival
+  // order.
+  struct ClientQueue {
+    double used = 0.0;  // seconds its jobs have run on a worker (slices ended)
+    std::set<Job*> running;  // their current slices count too (ServedLocked)
+    std::set<std::pair<uint64_t, Job*>> waiting[2];
+    int jobs = 0;  // waiting or running: the entry goes when it reaches 0
+  };
+  using Callbacks = std::vector<std::function<void()>>;
+  enum class SliceEnd { kDone, kPaused };
+
   Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics);
   void WorkerLoop(SpectralEngine* engine);
-  void RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine);
-  void Release(const std::shared_ptr<Job>& job);
-  void FinishLocked(const std::shared_ptr<Job>& job);
+  SliceEnd RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine, bool engine_holds_k);
+  void Release(const std::shared_ptr<Job>& job, const Ticket* ticket);
+  // mu_ held; what the job's waiters asked to run goes into `callbacks`.
+  void FinishLocked(const std::shared_ptr<Job>& job, Callbacks* callbacks);
+  void EnqueueLocked(Job* job);
+  void DequeueLocked(Job* job);
+  void LeaveClientLocked(Job* job);
+  Job* PickLocked();
+  // The client's service so far, its running slices included.
+  double ServedLocked(const ClientQueue& q, std::chrono::steady_clock::time_point now) const;
+  // Which of two clients with waiting work at priority `c` goes first.
+  bool BeforeLocked(const ClientQueue& a, const ClientQueue& b, int c,
+                    std::chrono::steady_clock::time_point now) const;
+  bool ShouldYieldLocked(const Job& job, std::chrono::steady_clock::time_point now) const;
+  size_t PositionLocked(const Job& job) const;
   std::unique_ptr<Ticket> Ready(std::shared_ptr<const CanonicalEntry> entry) {
     return std::unique_ptr<Ticket>(new Ticket(this, nullptr, std::move(entry)));
   }
@@ -153,8 +215,9 @@ class Scheduler {
   bool stopping_ = false;
   uint64_t next_seq_ = 0;
   uint32_t running_ = 0;
-  // (priority, arrival) -> job: begin() runs next.
-  std::set<std::tuple<int, uint64_t, Job*>> queue_;
+  uint32_t paused_ = 0;
+  size_t waiting_[2] = {0, 0};  // waiting jobs per priority, all clients
+  std::map<std::string, ClientQueue> clients_;
   std::map<std::string, std::shared_ptr<Job>> inflight_;
   mutable std::mutex profile_mu_;
   mutable std::map<uint32_t, std::string> profiles_;

@@ -1,6 +1,5 @@
 #include "server/server.h"
 
-#include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
@@ -10,8 +9,14 @@
 #include <sstream>
 #include <thread>
 
+#include "server/integrity_watch.h"
+#include "server/listen_address.h"
+#include "server/metrics_http.h"
+#include "server/prometheus_text.h"
+#include "server/reflection_service.h"
 #include "server/scheduler.h"
 #include "server/service.h"
+#include "server/tls_check.h"
 #include "storage/paths.h"
 
 namespace alignset::server {
@@ -37,11 +42,13 @@ StatusOr<std::string> ReadToken(const std::string& path) {
   return t;
 }
 
-Status WritePortFile(const std::string& path, int port) {
+// "PORT\n", then "metrics PORT\n" when the metrics endpoint is on.
+Status WritePortFile(const std::string& path, int port, int metrics_port) {
   const std::string tmp = path + ".tmp";
   FILE* f = std::fopen(tmp.c_str(), "w");
   if (!f) return Status::InvalidArgument("cannot write --port-file " + path);
   std::fprintf(f, "%d\n", port);
+  if (metrics_port > 0) std::fprintf(f, "metrics %d\n", metrics_port);
   const bool ok = std::fclose(f) == 0;
   if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
     return Status::InvalidArgument("cannot write --port-file " + path);
@@ -56,8 +63,11 @@ struct ServerInstance::Impl {
   std::string db_path;
   Metrics metrics;
   std::unique_ptr<storage::SetCache> cache;
+  std::unique_ptr<IntegrityWatch> integrity;
   std::unique_ptr<Scheduler> scheduler;
   std::unique_ptr<AlignSetService> service;
+  std::unique_ptr<ReflectionService> reflection;
+  std::unique_ptr<MetricsHttpServer> metrics_http;
   std::unique_ptr<grpc::Server> server;
   int port = 0;
   bool stopped = false;
@@ -92,6 +102,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
     if (!cert.ok()) return cert.status();
     auto key = ReadFile(config.tls_key, "--tls-key");
     if (!key.ok()) return key.status();
+    if (Status s = CheckTlsKeyPair(*cert, *key, config.tls_cert, config.tls_key); !s.ok()) return s;
     grpc::SslServerCredentialsOptions ssl;
     ssl.pem_key_cert_pairs.push_back({*key, *cert});
     creds = grpc::SslServerCredentials(ssl);
@@ -100,6 +111,12 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   auto cache = storage::SetCache::Open(impl->db_path);
   if (!cache.ok()) return Status::Unavailable("cannot open the cache " + impl->db_path + ": " + cache.status().message());
   impl->cache = std::move(cache).value();
+  if (Status w = impl->cache->ProbeWrite(); !w.ok()) {
+    impl->metrics.database_writable.store(false);
+    spdlog::warn("the cache {} is not writable ({}): sets will be served but not stored, and "
+                 "optimized again after a restart",
+                 impl->db_path, w.message());
+  }
 
   Scheduler::Options so;
   so.workers = config.workers;
@@ -112,34 +129,74 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   }
   so.engine = config.engine;
   so.max_queue = config.max_queue;
+  so.max_queue_per_client = config.max_queue_per_client;
+  so.time_slice = std::chrono::milliseconds(config.time_slice_ms);
+  so.max_paused = config.max_paused;
   so.optimizer.max_iterations = config.max_iterations;
   so.seed = config.seed;
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
+  impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);
+  so.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
+  if (config.quick_check) impl->integrity->CheckInBackground("at start");
   auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
   if (!scheduler.ok()) return scheduler.status();
   impl->scheduler = std::move(scheduler).value();
   impl->service = std::make_unique<AlignSetService>(config, impl->db_path, token, impl->cache.get(),
                                                     impl->scheduler.get(), &impl->metrics);
 
+  AlignSetService* service = impl->service.get();
+  impl->reflection = std::make_unique<ReflectionService>(
+      std::vector<std::string>{v1::AlignSet::service_full_name(), "grpc.health.v1.Health",
+                               "grpc.reflection.v1alpha.ServerReflection"},
+      [service](grpc::ServerContext* ctx) { return service->Authorize(ctx); });
+
   grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  // gRPC sets SO_REUSEPORT by default: a second server on the same address
+  // would start without error and take part of the traffic, and with port 0
+  // the listener it clones per poller binds a second, unreported port.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(config.listen, creds, &impl->port);
   builder.RegisterService(impl->service.get());
+  builder.RegisterService(impl->reflection.get());
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_request_bytes));
   builder.SetMaxSendMessageSize(-1);
   impl->server = builder.BuildAndStart();
   if (!impl->server || impl->port == 0) {
     impl->scheduler->Shutdown();
-    return Status::Unavailable("cannot listen on " + config.listen);
+    const std::string why = DescribeBindFailure(config.listen);
+    return Status::Unavailable("cannot listen on " + config.listen + (why.empty() ? "" : ": " + why));
   }
+  // The overall status ("") and the service's own name: probes and load
+  // balancers ask per service.
   impl->server->GetHealthCheckService()->SetServingStatus(true);
+  impl->server->GetHealthCheckService()->SetServingStatus(v1::AlignSet::service_full_name(), true);
+  if (!config.metrics_listen.empty()) {
+    auto http = MetricsHttpServer::Start(config.metrics_listen, [service, m = &impl->metrics] {
+      v1::MetricsResponse values;
+      service->FillMetrics(&values);
+      return PrometheusText(values, *m);
+    });
+    if (!http.ok()) {
+      impl->server->Shutdown();
+      impl->scheduler->Shutdown();
+      return http.status();
+    }
+    impl->metrics_http = std::move(http).value();
+    spdlog::info("Prometheus metrics on http://{}/metrics (port {})", config.metrics_listen,
+                 impl->metrics_http->port());
+  }
   if (!config.port_file.empty()) {
-    if (Status s = WritePortFile(config.port_file, impl->port); !s.ok()) {
+    const int metrics_port = impl->metrics_http ? impl->metrics_http->port() : 0;
+    if (Status s = WritePortFile(config.port_file, impl->port, metrics_port); !s.ok()) {
       impl->server->Shutdown();
       impl->scheduler->Shutdown();
       return s;
     }
+  }
+  if (!token.empty() && config.tls_cert.empty()) {
+    spdlog::warn("--token-file without --tls-cert: the bearer token travels in clear text; "
+                 "serve TLS or keep the listener on a trusted network");
   }
   spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
                "max iterations {}{}{}",
@@ -162,8 +219,11 @@ void ServerInstance::Shutdown(double grace_seconds) {
   impl_->server->Shutdown(deadline);
   impl_->server->Wait();
   impl_->scheduler->Shutdown();  // joins workers: a write in progress completes
+  impl_->metrics_http.reset();  // before the service its scrapes read
+  impl_->reflection.reset();
   impl_->service.reset();
   impl_->scheduler.reset();
+  impl_->integrity.reset();  // waits for a check in progress
   impl_->cache.reset();  // closes SQLite cleanly (WAL checkpoint)
   spdlog::info("stopped");
 }

@@ -9,8 +9,10 @@
 
 #include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
+#include "server/log_text.h"
 #include "server/samples.h"
 #include "server/validation.h"
+#include "server/watch_pacer.h"
 
 namespace alignset::server {
 namespace {
@@ -22,21 +24,13 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Why a handler stopped waiting: the deadline passed or the client left.
-grpc::Status ClientGone(grpc::ServerContext* ctx) {
+// Why a call stopped waiting: the deadline passed or the client left.
+grpc::Status ClientGone(grpc::ServerContextBase* ctx) {
   if (ctx->deadline() <= std::chrono::system_clock::now()) {
     return grpc::Status(grpc::StatusCode::DEADLINE_EXCEEDED,
                         "deadline exceeded while waiting for the optimization");
   }
   return grpc::Status(grpc::StatusCode::CANCELLED, "cancelled by the client");
-}
-
-// Waits until the ticket is done; a non-OK status when the client went away.
-grpc::Status AwaitTicket(grpc::ServerContext* ctx, const Ticket& ticket) {
-  while (!ticket.Wait(kPoll)) {
-    if (ctx->IsCancelled()) return ClientGone(ctx);
-  }
-  return grpc::Status::OK;
 }
 
 bool ConstantTimeEquals(const std::string& a, const std::string& b) {
@@ -73,24 +67,47 @@ AlignSetService::AlignSetService(const ServerConfig& config, std::string db_path
       token_(std::move(token)),
       cache_(cache),
       scheduler_(scheduler),
-      metrics_(metrics) {}
+      metrics_(metrics),
+      loop_(std::make_unique<EventLoop>(std::chrono::milliseconds(100), [this] { TickWatches(); })) {}
 
-grpc::Status AlignSetService::Authorize(grpc::ServerContext* ctx) const {
+AlignSetService::~AlignSetService() { loop_->Stop(); }
+
+bool AlignSetService::TakeWaitingSlot() {
+  if (waiting_calls_.fetch_add(1) < config_.max_waiting_calls) return true;
+  waiting_calls_.fetch_sub(1);
+  const uint64_t n = metrics_->rejected_waiting_limit.fetch_add(1, std::memory_order_relaxed) + 1;
+  if ((n & (n - 1)) == 0) {
+    spdlog::warn("{} calls already waiting (--max-waiting-calls), refused one ({} so far)",
+                 config_.max_waiting_calls, n);
+  }
+  return false;
+}
+
+grpc::Status AlignSetService::Authorize(grpc::ServerContextBase* ctx) const {
   if (token_.empty()) return grpc::Status::OK;
   const auto& md = ctx->client_metadata();
   auto it = md.find("authorization");
+  const char* problem = nullptr;
   if (it == md.end()) {
-    spdlog::warn("unauthenticated call from {}: no authorization metadata", ctx->peer());
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
-                        "this server requires 'authorization: Bearer <token>'");
+    problem = "no authorization metadata";
+  } else {
+    const std::string value(it->second.data(), it->second.size());
+    const std::string prefix = "Bearer ";
+    if (value.rfind(prefix, 0) != 0 || !ConstantTimeEquals(value.substr(prefix.size()), token_)) {
+      problem = "wrong token";
+    }
   }
-  const std::string value(it->second.data(), it->second.size());
-  const std::string prefix = "Bearer ";
-  if (value.rfind(prefix, 0) != 0 || !ConstantTimeEquals(value.substr(prefix.size()), token_)) {
-    spdlog::warn("unauthenticated call from {}: wrong token", ctx->peer());
-    return grpc::Status(grpc::StatusCode::UNAUTHENTICATED, "invalid bearer token");
+  if (problem == nullptr) return grpc::Status::OK;
+  // Counted apart from the request counters (which count authorized calls
+  // only); logged at the 1st, 2nd, 4th, 8th, ... so that a flood of them
+  // cannot flood the log.
+  const uint64_t count = metrics_->requests_unauthenticated.fetch_add(1, std::memory_order_relaxed) + 1;
+  if ((count & (count - 1)) == 0) {
+    spdlog::warn("unauthenticated call from {}: {} ({} so far)", Quoted(ctx->peer()), problem, count);
   }
-  return grpc::Status::OK;
+  return grpc::Status(grpc::StatusCode::UNAUTHENTICATED,
+                      it == md.end() ? "this server requires 'authorization: Bearer <token>'"
+                                     : "invalid bearer token");
 }
 
 grpc::Status AlignSetService::Invalid(const Status& s, const char* rpc) const {
@@ -141,93 +158,300 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   md->set_optimize_seconds(rec.optimize_seconds);
   md->set_iterations(rec.iterations);
   md->set_engine(rec.engine);
+  md->set_not_stored(!entry.stored());
 }
 
-grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
-                                            const v1::AlignedSetRequest* req,
-                                            v1::AlignedSetResponse* resp) {
+// A GetAlignedSet call waiting for its optimization. It holds no thread:
+// the ticket's done callback posts Complete() to the event loop, and gRPC's
+// OnCancel ends it early when the client leaves. Owned by itself from Start
+// to OnDone; closures elsewhere hold weak pointers.
+class GetCall final : public grpc::ServerUnaryReactor, public std::enable_shared_from_this<GetCall> {
+ public:
+  GetCall(AlignSetService* service, grpc::CallbackServerContext* ctx, v1::AlignedSetResponse* resp,
+          Canonicalization canon, storage::SetKey key, std::unique_ptr<Ticket> ticket,
+          Clock::time_point t0)
+      : service_(service), ctx_(ctx), resp_(resp), canon_(std::move(canon)), key_(std::move(key)),
+        ticket_(std::move(ticket)), t0_(t0) {}
+
+  grpc::ServerUnaryReactor* Start() {
+    self_ = shared_from_this();
+    std::weak_ptr<GetCall> weak = self_;
+    EventLoop* loop = service_->loop_.get();
+    ticket_->OnDone([weak, loop] {
+      loop->Post([weak] {
+        if (auto call = weak.lock()) call->Complete();
+      });
+    });
+    return this;
+  }
+
+  void OnCancel() override {
+    if (!Claim()) return;
+    grpc::Status s = ClientGone(ctx_);
+    spdlog::info("GetAlignedSet {}: client stopped waiting ({})", KeyString(key_), s.error_message());
+    End(s);
+  }
+
+  void OnDone() override {
+    ticket_.reset();  // withdraws the waiter if the job is still on
+    service_->ReturnWaitingSlot();
+    self_.reset();
+  }
+
+ private:
+  // The first of Complete and OnCancel to get here finishes the call.
+  bool Claim() {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (claimed_) return false;
+    claimed_ = true;
+    return true;
+  }
+  void Complete() {
+    if (!Claim()) return;
+    auto entry = ticket_->Result();
+    if (!entry.ok()) return End(ToGrpc(entry.status()));
+    service_->FillSet(canon_, key_, **entry, ticket_->from_cache(), resp_);
+    End(grpc::Status::OK);
+  }
+  void End(const grpc::Status& s) {
+    service_->metrics_->latency_get.Observe(Since(t0_));
+    Finish(s);
+  }
+
+  AlignSetService* const service_;
+  grpc::CallbackServerContext* const ctx_;
+  v1::AlignedSetResponse* const resp_;
+  const Canonicalization canon_;
+  const storage::SetKey key_;
+  std::unique_ptr<Ticket> ticket_;
+  const Clock::time_point t0_;
+  std::mutex mu_;
+  bool claimed_ = false;
+  std::shared_ptr<GetCall> self_;
+};
+
+grpc::ServerUnaryReactor* AlignSetService::GetAlignedSet(grpc::CallbackServerContext* ctx,
+                                                         const v1::AlignedSetRequest* req,
+                                                         v1::AlignedSetResponse* resp) {
+  const auto t0 = Clock::now();
+  auto finish = [&](const grpc::Status& s) {
+    metrics_->latency_get.Observe(Since(t0));
+    grpc::ServerUnaryReactor* r = ctx->DefaultReactor();
+    r->Finish(s);
+    return r;
+  };
+  if (auto a = Authorize(ctx); !a.ok()) return finish(a);
   metrics_->requests_get.fetch_add(1, std::memory_order_relaxed);
-  if (auto a = Authorize(ctx); !a.ok()) return a;
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
-  if (!canon.ok()) return Invalid(canon.status(), "GetAlignedSet");
-  if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "GetAlignedSet");
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
-  auto ticket = scheduler_->Acquire(key, Priority::kInteractive);
-  if (!ticket.ok()) return ToGrpc(ticket.status());
-  if (auto w = AwaitTicket(ctx, **ticket); !w.ok()) {
-    spdlog::info("GetAlignedSet {}: client stopped waiting ({})", KeyString(key), w.error_message());
-    return w;
+  if (!canon.ok()) return finish(Invalid(canon.status(), "GetAlignedSet"));
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
+    return finish(Invalid(r, "GetAlignedSet"));
   }
-  auto entry = (*ticket)->Result();
-  if (!entry.ok()) return ToGrpc(entry.status());
-  const bool from_cache = (*ticket)->from_cache();
-  FillSet(*canon, key, **entry, from_cache, resp);
-  // Hits are the hot path: logged only at debug level.
-  spdlog::debug("served {} as {} ({})", KeyString(key), ToString(canon->ops),
-                from_cache ? "hit" : "optimized");
-  return grpc::Status::OK;
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
+  auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
+  if (!ticket.ok()) return finish(ToGrpc(ticket.status()));
+  if ((*ticket)->Done()) {
+    auto entry = (*ticket)->Result();
+    if (!entry.ok()) return finish(ToGrpc(entry.status()));
+    const bool from_cache = (*ticket)->from_cache();
+    FillSet(*canon, key, **entry, from_cache, resp);
+    // Hits are the hot path: logged only at debug level.
+    spdlog::debug("served {} as {} ({})", KeyString(key), ToString(canon->ops),
+                  from_cache ? "hit" : "optimized");
+    return finish(grpc::Status::OK);
+  }
+  if (!TakeWaitingSlot()) {
+    return finish(grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                               "too many calls are waiting for optimizations (" +
+                                   std::to_string(config_.max_waiting_calls) +
+                                   ", --max-waiting-calls); retry later"));
+  }
+  auto call = std::make_shared<GetCall>(this, ctx, resp, std::move(canon).value(), key,
+                                        std::move(ticket).value(), t0);
+  return call->Start();
 }
 
-grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
-                                              const v1::AlignedSetRequest* req,
-                                              grpc::ServerWriter<v1::WatchEvent>* writer) {
+// A WatchAlignedSet stream. Holds no thread: the event loop calls Tick()
+// every 100 ms (and at once when the job is done), and Tick writes what the
+// pacer says is due, one message at a time.
+class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
+                        public std::enable_shared_from_this<WatchCall> {
+ public:
+  WatchCall(AlignSetService* service, grpc::CallbackServerContext* ctx, Canonicalization canon,
+            storage::SetKey key, std::unique_ptr<Ticket> ticket, Clock::time_point t0)
+      : service_(service), ctx_(ctx), canon_(std::move(canon)), key_(std::move(key)),
+        ticket_(std::move(ticket)), t0_(t0) {}
+
+  grpc::ServerWriteReactor<v1::WatchEvent>* Start() {
+    self_ = shared_from_this();
+    service_->AddWatch(self_);
+    std::weak_ptr<WatchCall> weak = self_;
+    EventLoop* loop = service_->loop_.get();
+    auto tick = [weak] {
+      if (auto call = weak.lock()) call->Tick();
+    };
+    ticket_->OnDone([loop, tick] { loop->Post(tick); });
+    loop->Post(tick);  // the first event (queue position, or the set) at once
+    return this;
+  }
+
+  // What is due now, if nothing is being written.
+  void Tick() {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (ended_ || writing_) return;
+    const JobView v = ticket_->View();
+    ev_.Clear();
+    if (v.state == JobView::State::kDone) {
+      auto entry = ticket_->Result();
+      if (!entry.ok()) return EndLocked(ToGrpc(entry.status()));
+      service_->FillSet(canon_, key_, **entry, ticket_->from_cache(), ev_.mutable_set());
+      last_ = true;
+    } else {
+      switch (pacer_.Next(v, Clock::now())) {
+        case WatchPacer::Send::kNothing: return;
+        case WatchPacer::Send::kQueued:
+          ev_.mutable_queued()->set_position(static_cast<uint32_t>(v.queue_position));
+          break;
+        case WatchPacer::Send::kProgress: {
+          v1::Progress* p = ev_.mutable_progress();
+          p->set_iteration(v.progress.iteration);
+          p->set_max_iterations(v.progress.max_iterations);
+          p->set_loss(v.progress.loss);
+          p->set_learning_rate(v.progress.learning_rate);
+          p->set_elapsed_seconds(v.elapsed_seconds);
+          break;
+        }
+      }
+    }
+    writing_ = true;
+    StartWrite(&ev_);
+  }
+
+  void OnWriteDone(bool ok) override {
+    std::lock_guard<std::mutex> lock(mu_);
+    writing_ = false;
+    if (ended_) return;
+    if (!ok) return EndLocked(ClientGone(ctx_));
+    if (last_) return EndLocked(grpc::Status::OK);
+  }
+
+  void OnCancel() override {
+    std::lock_guard<std::mutex> lock(mu_);
+    cancelled_ = true;
+    // With a write in flight, OnWriteDone(false) ends the stream.
+    if (!writing_) EndLocked(ClientGone(ctx_));
+  }
+
+  void OnDone() override {
+    service_->RemoveWatch(this);
+    ticket_.reset();
+    service_->ReturnWaitingSlot();
+    self_.reset();
+  }
+
+ private:
+  void EndLocked(const grpc::Status& s) {
+    if (ended_) return;
+    ended_ = true;
+    service_->metrics_->latency_watch.Observe(Since(t0_));
+    Finish(s);
+  }
+
+  AlignSetService* const service_;
+  grpc::CallbackServerContext* const ctx_;
+  const Canonicalization canon_;
+  const storage::SetKey key_;
+  std::unique_ptr<Ticket> ticket_;
+  const Clock::time_point t0_;
+  std::mutex mu_;
+  WatchPacer pacer_;
+  v1::WatchEvent ev_;  // the message in flight: valid until OnWriteDone
+  bool writing_ = false;
+  bool last_ = false;
+  bool ended_ = false;
+  bool cancelled_ = false;
+  std::shared_ptr<WatchCall> self_;
+};
+
+void AlignSetService::AddWatch(const std::shared_ptr<WatchCall>& call) {
+  std::lock_guard<std::mutex> lock(watches_mu_);
+  watches_[call.get()] = call;
+}
+
+void AlignSetService::RemoveWatch(const WatchCall* call) {
+  std::lock_guard<std::mutex> lock(watches_mu_);
+  watches_.erase(call);
+}
+
+void AlignSetService::TickWatches() {
+  std::vector<std::shared_ptr<WatchCall>> live;
+  {
+    std::lock_guard<std::mutex> lock(watches_mu_);
+    live.reserve(watches_.size());
+    for (const auto& [ptr, weak] : watches_) {
+      if (auto call = weak.lock()) live.push_back(std::move(call));
+    }
+  }
+  for (const auto& call : live) call->Tick();
+}
+
+grpc::ServerWriteReactor<v1::WatchEvent>* AlignSetService::WatchAlignedSet(
+    grpc::CallbackServerContext* ctx, const v1::AlignedSetRequest* req) {
+  const auto t0 = Clock::now();
+  // Refusals before the stream starts: a reactor that only finishes.
+  class Refusal final : public grpc::ServerWriteReactor<v1::WatchEvent> {
+   public:
+    explicit Refusal(const grpc::Status& s) { Finish(s); }
+    void OnDone() override { delete this; }
+  };
+  auto refuse = [&](const grpc::Status& s) {
+    metrics_->latency_watch.Observe(Since(t0));
+    return new Refusal(s);
+  };
+  if (auto a = Authorize(ctx); !a.ok()) return refuse(a);
   metrics_->requests_watch.fetch_add(1, std::memory_order_relaxed);
-  if (auto a = Authorize(ctx); !a.ok()) return a;
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
-  if (!canon.ok()) return Invalid(canon.status(), "WatchAlignedSet");
-  if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "WatchAlignedSet");
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
-  auto ticket = scheduler_->Acquire(key, Priority::kInteractive);
-  if (!ticket.ok()) return ToGrpc(ticket.status());
-  const Ticket& t = **ticket;
-
-  // Events at most every 100 ms (progress callbacks can be much faster);
-  // a change of state or queue position always goes out.
-  uint64_t version = ~uint64_t{0};
-  JobView::State last_state = JobView::State::kDone;
-  size_t last_position = SIZE_MAX;
-  Clock::time_point last_progress{};
-  for (;;) {
-    JobView v = t.WaitForChange(version, std::chrono::milliseconds(100));
-    if (v.state == JobView::State::kDone) break;
-    if (ctx->IsCancelled()) return ClientGone(ctx);
-    v1::WatchEvent ev;
-    bool send = false;
-    if (v.state == JobView::State::kQueued) {
-      if (last_state != v.state || v.queue_position != last_position) {
-        ev.mutable_queued()->set_position(static_cast<uint32_t>(v.queue_position));
-        last_position = v.queue_position;
-        send = true;
-      }
-    } else if (last_state != v.state || Clock::now() - last_progress >= std::chrono::milliseconds(100)) {
-      v1::Progress* p = ev.mutable_progress();
-      p->set_iteration(v.progress.iteration);
-      p->set_max_iterations(v.progress.max_iterations);
-      p->set_loss(v.progress.loss);
-      p->set_learning_rate(v.progress.learning_rate);
-      p->set_elapsed_seconds(v.elapsed_seconds);
-      last_progress = Clock::now();
-      send = v.version != version;
-    }
-    last_state = v.state;
-    version = v.version;
-    if (send && !writer->Write(ev)) return ClientGone(ctx);
+  if (!canon.ok()) return refuse(Invalid(canon.status(), "WatchAlignedSet"));
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
+    return refuse(Invalid(r, "WatchAlignedSet"));
   }
-  auto entry = t.Result();
-  if (!entry.ok()) return ToGrpc(entry.status());
-  v1::WatchEvent ev;
-  FillSet(*canon, key, **entry, t.from_cache(), ev.mutable_set());
-  if (!writer->Write(ev)) return ClientGone(ctx);
-  return grpc::Status::OK;
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
+  auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
+  if (!ticket.ok()) return refuse(ToGrpc(ticket.status()));
+  if (!TakeWaitingSlot()) {
+    return refuse(grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                               "too many calls are waiting for optimizations (" +
+                                   std::to_string(config_.max_waiting_calls) +
+                                   ", --max-waiting-calls); retry later"));
+  }
+  auto call = std::make_shared<WatchCall>(this, ctx, std::move(canon).value(), key,
+                                          std::move(ticket).value(), t0);
+  return call->Start();
 }
 
 grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                                          const v1::PrecomputeRequest* req,
                                          grpc::ServerWriter<v1::PrecomputeProgress>* writer) {
-  metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
+  // A precompute stream holds a thread for as long as it runs: their number
+  // is capped instead.
+  struct StreamSlot {
+    std::atomic<int>* count;
+    Metrics* metrics;
+    Clock::time_point t0 = Clock::now();
+    ~StreamSlot() {
+      count->fetch_sub(1);
+      metrics->latency_precompute.Observe(Since(t0));
+    }
+  } slot{&precompute_streams_, metrics_};
+  if (precompute_streams_.fetch_add(1) >= config_.max_precompute_streams) {
+    return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                        std::to_string(config_.max_precompute_streams) +
+                            " precompute streams are running (--max-precompute-streams); retry later");
+  }
   if (req->n().empty()) return Invalid(Status::InvalidArgument("give at least one n"), "Precompute");
   if (req->n().size() > 64) {
     return Invalid(Status::InvalidArgument("at most 64 values of n per request"), "Precompute");
@@ -269,28 +493,33 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                    "Precompute");
   }
   if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
-  const uint32_t realizations = std::max<uint32_t>(1, req->realizations());
-  std::vector<storage::SetKey> items;
-  size_t i = 0;
-  for (uint32_t n : req->n()) {
-    for (const auto& dirs : space) {
-      for (uint32_t r = 0; r < realizations; ++r) {
-        if (i++ % shards == req->shard_index()) items.push_back(scheduler_->KeyFor(n, dirs, r));
-      }
-    }
-  }
-  spdlog::info("precompute: {} items (shard {}/{}) from {}", items.size(), req->shard_index(),
-               shards, ctx->peer());
+  const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
+  // The items are enumerated as they are reached, not listed up front: a
+  // request may name 64 N x 4141 keys x 64 realizations. Item i (N outer,
+  // then keys, realizations inner) belongs to this shard when
+  // i mod shards == shard_index.
+  const uint64_t space_size = space.size();
+  const uint64_t per_n = space_size * realizations;
+  const uint64_t all = static_cast<uint64_t>(req->n().size()) * per_n;
+  const uint64_t total = req->shard_index() < all ? (all - req->shard_index() + shards - 1) / shards : 0;
+  auto item = [&](uint64_t j) {
+    const uint64_t i = req->shard_index() + j * shards;
+    return scheduler_->KeyFor(req->n(static_cast<int>(i / per_n)), space[(i / realizations) % space_size],
+                              static_cast<uint32_t>(i % realizations));
+  };
+  const std::string client = ctx->peer();
+  spdlog::info("precompute: {} items (shard {}/{}) from {}", total, req->shard_index(), shards,
+               Quoted(client));
 
   const auto t0 = Clock::now();
   v1::PrecomputeProgress p;
-  p.set_total(items.size());
+  p.set_total(total);
   Clock::time_point last_sent{};
   bool client_gone = false;
   // Sends the counts; cache skips are throttled, everything else goes out.
   auto send = [&](const storage::SetKey* key, const std::string& error, bool force) {
     const uint64_t resolved = p.done() + p.cached_already() + p.failed();
-    p.set_remaining(items.size() - resolved);
+    p.set_remaining(total - resolved);
     p.set_elapsed_seconds(Since(t0));
     p.set_estimated_seconds_left(
         p.done() > 0 ? p.elapsed_seconds() / static_cast<double>(p.done()) * p.remaining()
@@ -301,6 +530,13 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     last_sent = Clock::now();
     if (!writer->Write(p)) client_gone = true;
   };
+  // The total goes out at once, and something at least every two seconds
+  // while an item runs (an optimization at N = 65536 takes a minute or more).
+  constexpr auto kHeartbeat = std::chrono::seconds(2);
+  auto heartbeat = [&] {
+    if (Clock::now() - last_sent >= kHeartbeat) send(nullptr, "", true);
+  };
+  send(nullptr, "", true);
 
   struct Outstanding {
     storage::SetKey key;
@@ -333,7 +569,8 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     }
   };
 
-  for (const storage::SetKey& key : items) {
+  for (uint64_t j = 0; j < total; ++j) {
+    const storage::SetKey key = item(j);
     if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
     auto stored = scheduler_->IsStored(key);
     if (stored.ok() && *stored) {
@@ -346,9 +583,10 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
       if (outstanding.size() >= window) {
         outstanding.front().ticket->Wait(kPoll);
+        heartbeat();
         continue;
       }
-      auto ticket = scheduler_->Acquire(key, Priority::kBatch);
+      auto ticket = scheduler_->Acquire(key, Priority::kBatch, client);
       if (ticket.ok()) {
         outstanding.push_back({key, std::move(ticket).value()});
         break;
@@ -360,6 +598,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         } else {
           outstanding.front().ticket->Wait(kPoll);
         }
+        heartbeat();
         continue;
       }
       if (ticket.status().code() == Status::Code::kUnavailable) return ToGrpc(ticket.status());
@@ -373,6 +612,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     if (outstanding.empty()) break;
     if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
     outstanding.front().ticket->Wait(kPoll);
+    heartbeat();
   }
   send(nullptr, "", true);
   spdlog::info("precompute finished: {} optimized, {} cached already, {} failed in {:.1f} s",
@@ -382,8 +622,13 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
 
 grpc::Status AlignSetService::GetSamples(grpc::ServerContext* ctx, const v1::SamplesRequest* req,
                                          v1::SamplesResponse* resp) {
-  metrics_->requests_samples.fetch_add(1, std::memory_order_relaxed);
+  struct Timed {
+    Histogram* h;
+    Clock::time_point t0 = Clock::now();
+    ~Timed() { h->Observe(Since(t0)); }
+  } timed{&metrics_->latency_samples};
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_samples.fetch_add(1, std::memory_order_relaxed);
   if (Status s = ValidatePointCount(req->n(), config_.max_n); !s.ok()) return Invalid(s, "GetSamples");
   std::optional<double> shear;
   if (req->has_shear_deg()) {
@@ -427,6 +672,14 @@ void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   out->set_optimize_seconds_max(s.optimize_seconds_max);
   out->set_rejected_queue_full(s.rejected_queue_full);
   out->set_uptime_seconds(s.uptime_seconds);
+  out->set_requests_unauthenticated(s.requests_unauthenticated);
+  out->set_sets_not_stored(s.sets_not_stored);
+  out->set_rejected_client_limit(s.rejected_client_limit);
+  out->set_optimizations_paused(s.optimizations_paused);
+  out->set_paused(scheduler_->paused());
+  out->set_waiting_calls(static_cast<uint32_t>(waiting_calls_.load()));
+  out->set_rejected_waiting_limit(s.rejected_waiting_limit);
+  out->set_database_integrity_errors(s.database_integrity_errors);
 }
 
 grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,
@@ -435,6 +688,7 @@ grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,
   if (auto a = Authorize(ctx); !a.ok()) return a;
   auto stats = cache_->Stats();
   if (!stats.ok()) return ToGrpc(stats.status());
+  resp->set_damaged(stats->damaged);
   resp->set_sets(stats->sets);
   resp->set_bytes(stats->bytes);
   resp->set_one_direction_sets(stats->one_direction_sets);

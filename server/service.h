@@ -1,32 +1,53 @@
 #pragma once
 
+#include <atomic>
+#include <memory>
+#include <mutex>
 #include <string>
+#include <unordered_map>
 
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "server/config.h"
+#include "server/event_loop.h"
 #include "server/metrics.h"
 #include "server/scheduler.h"
 #include "storage/set_cache.h"
 
 namespace alignset::server {
 
-// The alignset.v1.AlignSet service on gRPC's synchronous API. Handlers that
-// wait for an optimization poll their context every 50 ms, so a client that
-// cancels or reaches its deadline stops waiting promptly (its ticket is
-// released; see Scheduler for what happens to the optimization).
-class AlignSetService final : public v1::AlignSet::Service {
+class WatchCall;
+
+// The service's base: the two calls that can wait for an optimization run on
+// gRPC's callback API, the rest on the synchronous one.
+using AlignSetServiceBase = v1::AlignSet::WithCallbackMethod_GetAlignedSet<
+    v1::AlignSet::WithCallbackMethod_WatchAlignedSet<v1::AlignSet::Service>>;
+
+// The alignset.v1.AlignSet service.
+//
+// Threads: a GetAlignedSet or WatchAlignedSet call that waits for an
+// optimization holds no thread. Its ticket calls back when the job is done,
+// and one event loop thread builds the responses and paces every watch
+// stream (server/watch_pacer.h); a client that cancels or reaches its
+// deadline is told by gRPC (OnCancel) and its ticket is released. At most
+// --max-waiting-calls such calls wait at once (more: RESOURCE_EXHAUSTED).
+// Precompute streams, which do hold a thread, are capped by
+// --max-precompute-streams. The other calls are short and synchronous.
+class AlignSetService final : public AlignSetServiceBase {
  public:
   // `token` empty: no authentication. Otherwise every call must carry
   // metadata "authorization: Bearer <token>" or gets UNAUTHENTICATED.
   AlignSetService(const ServerConfig& config, std::string db_path, std::string token,
                   storage::SetCache* cache, Scheduler* scheduler, Metrics* metrics);
+  ~AlignSetService() override;
 
-  grpc::Status GetAlignedSet(grpc::ServerContext* ctx, const v1::AlignedSetRequest* req,
-                             v1::AlignedSetResponse* resp) override;
-  grpc::Status WatchAlignedSet(grpc::ServerContext* ctx, const v1::AlignedSetRequest* req,
-                               grpc::ServerWriter<v1::WatchEvent>* writer) override;
-  // In server/service_batch.cc: a loop over the GetAlignedSet path, one
-  // status per item.
+  grpc::ServerUnaryReactor* GetAlignedSet(grpc::CallbackServerContext* ctx,
+                                          const v1::AlignedSetRequest* req,
+                                          v1::AlignedSetResponse* resp) override;
+  grpc::ServerWriteReactor<v1::WatchEvent>* WatchAlignedSet(grpc::CallbackServerContext* ctx,
+                                                             const v1::AlignedSetRequest* req) override;
+  // In server/service_batch.cc: the GetAlignedSet path for many items, one
+  // status per item. Synchronous: a batch holds a thread while it waits, so
+  // at most --max-batch-calls run at once.
   grpc::Status GetAlignedSets(grpc::ServerContext* ctx, const v1::AlignedSetsRequest* req,
                               v1::AlignedSetsResponse* resp) override;
   grpc::Status Precompute(grpc::ServerContext* ctx, const v1::PrecomputeRequest* req,
@@ -40,13 +61,31 @@ class AlignSetService final : public v1::AlignSet::Service {
   grpc::Status GetMetrics(grpc::ServerContext* ctx, const v1::MetricsRequest* req,
                           v1::MetricsResponse* resp) override;
 
- private:
-  grpc::Status Authorize(grpc::ServerContext* ctx) const;
-  grpc::Status Invalid(const Status& s, const char* rpc) const;
+  // OK when no token is required or the call carries it; otherwise
+  // UNAUTHENTICATED, counted in requests_unauthenticated. Also guards the
+  // reflection service.
+  grpc::Status Authorize(grpc::ServerContextBase* ctx) const;
+
+  // Calls waiting for an optimization right now (GetAlignedSet and
+  // WatchAlignedSet together).
+  int64_t waiting_calls() const { return waiting_calls_.load(); }
+  // The metrics as GetMetrics reports them.
   void FillMetrics(v1::MetricsResponse* out) const;
+
+ private:
+  friend class GetCall;
+  friend class WatchCall;
+
+  grpc::Status Invalid(const Status& s, const char* rpc) const;
   void FillKey(const storage::SetKey& key, v1::CanonicalKey* out) const;
   void FillSet(const Canonicalization& canon, const storage::SetKey& key,
                const CanonicalEntry& entry, bool from_cache, v1::AlignedSetResponse* out) const;
+  // Takes a waiting slot; false (and nothing taken) at --max-waiting-calls.
+  bool TakeWaitingSlot();
+  void ReturnWaitingSlot() { waiting_calls_.fetch_sub(1); }
+  void TickWatches();
+  void AddWatch(const std::shared_ptr<WatchCall>& call);
+  void RemoveWatch(const WatchCall* call);
 
   const ServerConfig config_;
   const std::string db_path_;
@@ -54,6 +93,13 @@ class AlignSetService final : public v1::AlignSet::Service {
   storage::SetCache* cache_;
   Scheduler* scheduler_;
   Metrics* metrics_;
+  std::atomic<int64_t> waiting_calls_{0};
+  std::atomic<int> precompute_streams_{0};
+  std::atomic<int> batch_calls_{0};
+  std::mutex watches_mu_;
+  std::unordered_map<const WatchCall*, std::weak_ptr<WatchCall>> watches_;
+  // Last: its thread runs closures that use everything above.
+  std::unique_ptr<EventLoop> loop_;
 };
 
 // alignset Status -> gRPC status, code for code.

@@ -5,6 +5,7 @@
 // about as long as its slowest item.
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -35,6 +36,16 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
                                              const v1::AlignedSetsRequest* req,
                                              v1::AlignedSetsResponse* resp) {
   if (auto a = Authorize(ctx); !a.ok()) return a;
+  // A batch holds this thread while it waits: their number is capped.
+  struct BatchSlot {
+    std::atomic<int>* count;
+    ~BatchSlot() { count->fetch_sub(1); }
+  } slot{&batch_calls_};
+  if (batch_calls_.fetch_add(1) >= config_.max_batch_calls) {
+    return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                        std::to_string(config_.max_batch_calls) +
+                            " GetAlignedSets batches are running (--max-batch-calls); retry later");
+  }
 
   // The items: explicit, or every key of a space for one N.
   std::vector<BatchItemState> items;
@@ -95,7 +106,7 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
     }
     item.canon = *canon;
     item.key = scheduler_->KeyFor(item.request.n(), canon->key, item.request.realization());
-    auto ticket = scheduler_->Acquire(item.key, Priority::kInteractive);
+    auto ticket = scheduler_->Acquire(item.key, Priority::kInteractive, ctx->peer());
     if (!ticket.ok()) {
       item.status = ticket.status();
       continue;

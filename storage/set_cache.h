@@ -68,6 +68,9 @@ struct SetSummary {
 };
 
 struct CacheStats {
+  // True when the file has damaged pages: the figures then count the rows
+  // that could still be read (storage/cache_recovery.h).
+  bool damaged = false;
   int64_t sets = 0;
   int64_t bytes = 0;  // sum of blob sizes
   int64_t one_direction_sets = 0;
@@ -75,8 +78,9 @@ struct CacheStats {
 };
 
 struct VerifyReport {
-  int64_t checked = 0;
-  std::vector<SetKey> corrupt;
+  int64_t checked = 0;           // rows found (readable or not)
+  std::vector<SetKey> corrupt;   // unreadable, or failing their checksum
+  std::vector<std::string> problems;  // what SQLite said, one line each
 };
 
 struct MergeReport {
@@ -120,12 +124,20 @@ class SetCache {
   virtual StatusOr<std::vector<SetSummary>> ListSummaries(
       std::optional<uint32_t> n = std::nullopt, std::optional<std::string> profile = std::nullopt);
   virtual StatusOr<CacheStats> Stats() = 0;
-  // Re-reads every blob and checks its checksum.
+  // Re-reads every row it can reach and checks its checksum; damaged pages
+  // are reported (their keys in `corrupt` when an index still names them),
+  // not fatal (ScanForDamage).
   virtual StatusOr<VerifyReport> Verify() = 0;
   // Copies every verified set of `other_path` that this cache lacks.
   virtual StatusOr<MergeReport> MergeFrom(const std::string& other_path) = 0;
   // Writes a consistent copy of this cache to `path` (which must not exist).
   virtual Status ExportTo(const std::string& path) = 0;
+  // Whether a write can be committed now: rewrites one header field with
+  // its own value in a committed transaction (no row changes). Fails when
+  // the file is read-only (permissions, a read-only file system, a format
+  // this SQLite may only read), locked past the busy timeout, or the disk is
+  // full.
+  virtual Status ProbeWrite() = 0;
 };
 
 }  // namespace alignset::storage

@@ -29,80 +29,20 @@
 #include <utility>
 
 #include "storage/blob_codec.h"
+#include "storage/cache_recovery.h"
 #include "storage/schema.h"
+#include "storage/set_rows.h"
 #include "storage/set_cache.h"
 #include "storage/sqlite_handle.h"
 
 namespace alignset::storage {
 namespace {
 
-// Column order of every full-row query; the blob is last (see schema.cc).
-constexpr const char* kColumns =
-    "n, dir_count, phi1, phi2, realization, profile, loss_total, loss_spectrum, loss_sw, "
-    "iterations, optimize_seconds, engine, created_unix, algorithm_version, checksum, points";
-// The same for a file from before schema version 3, whose sets are all
-// realization 0.
-constexpr const char* kColumnsBeforeRealizations =
-    "n, dir_count, phi1, phi2, 0, profile, loss_total, loss_spectrum, loss_sw, "
-    "iterations, optimize_seconds, engine, created_unix, algorithm_version, checksum, points";
-constexpr int kChecksumCol = 14;
-constexpr int kPointsCol = 15;
 constexpr const char* kKeyWhere =
     " WHERE n = ?1 AND dir_count = ?2 AND phi1 = ?3 AND phi2 = ?4 AND realization = ?5"
     " AND profile = ?6";
 constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, realization, profile";
 constexpr size_t kMaxEngineName = 64;
-
-void BindKey(Stmt& s, const SetKey& key) {
-  s.BindInt(1, key.n);
-  s.BindInt(2, key.dirs.count);
-  s.BindInt(3, key.dirs.phi1);
-  s.BindInt(4, key.dirs.phi2);
-  s.BindInt(5, key.realization);
-  s.BindText(6, key.profile);
-}
-
-SetKey KeyFromRow(const Stmt& s) {
-  SetKey k;
-  const int64_t n = s.Int(0);
-  k.n = (n < 0 || n > UINT32_MAX) ? 0 : static_cast<uint32_t>(n);
-  k.dirs.count = static_cast<int>(s.Int(1));
-  k.dirs.phi1 = static_cast<int>(s.Int(2));
-  k.dirs.phi2 = static_cast<int>(s.Int(3));
-  const int64_t r = s.Int(4);
-  k.realization = (r < 0 || r > UINT32_MAX) ? UINT32_MAX : static_cast<uint32_t>(r);
-  k.profile = s.Text(5);
-  return k;
-}
-
-// Columns 6..13 of kColumns.
-template <typename T>
-void MetadataFromRow(const Stmt& s, T* out) {
-  out->loss.total = s.Double(6);
-  out->loss.spectrum = s.Double(7);
-  out->loss.sw = s.Double(8);
-  out->iterations = static_cast<int>(s.Int(9));
-  out->optimize_seconds = s.Double(10);
-  out->engine = s.Text(11);
-  out->created_unix = s.Int(12);
-  out->algorithm_version = static_cast<int>(s.Int(13));
-}
-
-// A whole row, checked: a key that fails validation, a checksum mismatch or
-// a malformed blob is DataLoss naming the key.
-StatusOr<SetRecord> RecordFromRow(const Stmt& s) {
-  SetRecord r;
-  r.key = KeyFromRow(s);
-  Status valid = ValidateKey(r.key);
-  if (!valid.ok()) return Status::DataLoss("stored row has an invalid key: " + valid.message());
-  MetadataFromRow(s, &r);
-  const int64_t crc = s.Int(kChecksumCol);
-  if (crc < 0 || crc > UINT32_MAX) return Status::DataLoss(KeyToString(r.key) + ": bad checksum value");
-  auto points = VerifyAndUnpack(s.Blob(kPointsCol), static_cast<uint32_t>(crc), r.key.n);
-  if (!points.ok()) return Status::DataLoss(KeyToString(r.key) + ": " + points.status().message());
-  r.points = std::move(points).value();
-  return r;
-}
 
 bool Finite(double v) { return std::isfinite(v); }
 
@@ -249,6 +189,7 @@ class SqliteSetCache final : public SetCache {
                               "FROM sets");
     if (!stmt.ok()) return stmt.status();
     auto row = stmt->Step();
+    if (!row.ok() && row.status().code() == Status::Code::kDataLoss) return DamagedStats();
     if (!row.ok()) return row.status();
     CacheStats st;
     st.sets = stmt->Int(0);
@@ -259,21 +200,13 @@ class SqliteSetCache final : public SetCache {
   }
 
   StatusOr<VerifyReport> Verify() override {
-    auto reader = OpenReader(path_);
-    if (!reader.ok()) return reader.status();
-    auto tx = Transaction::Begin(*reader, Transaction::Kind::kRead);
-    if (!tx.ok()) return tx.status();
-    auto stmt = Stmt::Prepare(reader->get(), std::string("SELECT ") + kColumns + " FROM sets" + kOrder);
-    if (!stmt.ok()) return stmt.status();
+    auto scan = ScanForDamage(path_);
+    if (!scan.ok()) return scan.status();
     VerifyReport report;
-    for (;;) {
-      auto row = stmt->Step();
-      if (!row.ok()) return row.status();
-      if (!*row) return report;
-      ++report.checked;
-      auto rec = RecordFromRow(*stmt);
-      if (!rec.ok()) report.corrupt.push_back(KeyFromRow(*stmt));
-    }
+    report.checked = scan->readable + static_cast<int64_t>(scan->damaged.size());
+    report.corrupt = std::move(scan->damaged);
+    report.problems = std::move(scan->problems);
+    return report;
   }
 
   StatusOr<MergeReport> MergeFrom(const std::string& other_path) override {
@@ -365,7 +298,39 @@ class SqliteSetCache final : public SetCache {
     return FsyncPath(parent.string(), true);
   }
 
+  Status ProbeWrite() override {
+    if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
+    std::lock_guard<std::mutex> lock(mu_);
+    if (sqlite3_db_readonly(db_.get(), "main") == 1) {
+      return Status::InvalidArgument(path_ + " can only be opened read-only (file permissions, "
+                                     "a read-only file system, or a newer file format)");
+    }
+    auto tx = Transaction::Begin(db_, Transaction::Kind::kWrite);
+    if (!tx.ok()) return tx.status();
+    // user_version is not used by the schema (schema_version is a table):
+    // writing its own value back changes nothing but dirties page 1, so the
+    // commit really writes.
+    auto version = db_.QueryText("PRAGMA user_version");
+    if (!version.ok()) return version.status();
+    Status s = db_.Exec("PRAGMA user_version = " + *version);
+    if (!s.ok()) return s;
+    return tx->Commit();
+  }
+
  private:
+  // The figures of the rows that can still be read, from a damage scan.
+  StatusOr<CacheStats> DamagedStats() const {
+    CacheStats st;
+    st.damaged = true;
+    auto scan = ScanForDamage(path_, [&](SetRecord&& r) {
+      ++st.sets;
+      st.bytes += static_cast<int64_t>(r.points.size() * kBytesPerPoint);
+      (r.key.dirs.count == 1 ? st.one_direction_sets : st.two_direction_sets) += 1;
+    });
+    if (!scan.ok()) return scan.status();
+    return st;
+  }
+
   StatusOr<Db> OpenReader(const std::string& path) const {
     return Db::Open(path, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, options_.busy_timeout_ms);
   }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <memory>
 #include <string>
 
 #include "core/optimize/axis_stratification.h"
@@ -188,98 +190,161 @@ LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitr
   t.total = t.spectrum + sw_weight * t.sw;
   return t;
 }
-
-StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
-                                      const OptimizerOptions& options, SpectralEngine& engine,
-                                      const ProgressCallback& progress) {
-  if (Status s = ValidateProblem(problem); !s.ok()) return s;
-  if (Status s = ValidateOptions(options); !s.ok()) return s;
-
+// Everything the loop carries from one iteration to the next, kept between
+// slices. `trial`, `scratch` and `sw_grad` are overwritten before they are
+// read in every iteration, so they are dropped while the run is paused.
+struct OptimizerRun::State {
+  OptimizationProblem problem;
+  OptimizerOptions options;
   OptimizationResult result;
-  result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
-  const std::vector<double> dirs = AnisotropyDirections(problem.directions);
-  const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
-  result.frequency_count = k.size();
-  engine.SetFrequencies(k);
-  const SlicedWasserstein sw(problem.n, dirs);
-
-  const double first_lr =
-      options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
-  const double sw_weight = EffectiveSwWeight(options, problem.n);
-  const int max_iterations = EffectiveMaxIterations(
-      options, problem.n, static_cast<int>(problem.directions.size()));
-
-  // The phases: an optional warm-up weighting, then the main one.
+  std::vector<Frequency> k;
+  std::unique_ptr<SlicedWasserstein> sw;
+  // The phases: an optional warm-up weighting, then the main one; each ends
+  // at its iteration and hands its best set to the next.
   struct Phase {
     std::vector<double> weights;
     int end_iteration;
   };
   std::vector<Phase> phases;
-  const std::vector<double> main_weights =
-      SpectrumLossWeights(k, options.weighting);
-  const int warmup_iterations =
-      static_cast<int>(std::lround(options.warmup_fraction * max_iterations));
-  if (warmup_iterations > 0 && warmup_iterations < max_iterations) {
-    phases.push_back({SpectrumLossWeights(k, options.warmup_weighting),
-                      warmup_iterations});
-  }
-  phases.push_back({main_weights, max_iterations});
+  size_t phase = 0;
+  bool phase_started = false;  // `accepted` holds this phase's start
+  PointSet x;                  // the set handed to the next phase (or the result)
+  AxisStratification stratification;
+  double first_lr = 0.0;
+  double lr = 0.0;
+  double sw_weight = 0.0;
+  int max_iterations = 0;
+  double anneal_step = 1.0;
+  bool started = false;  // the start set is evaluated
+  bool over = false;     // finished or cancelled
 
+  AdamState accepted;
+  AdamState trial;
   SpectrumEvaluation scratch;
   std::vector<Point2> sw_grad;
-  // `initial` is reported under the main weighting, like `final_loss`.
-  PointSet x = problem.start ? *problem.start : OwenScrambledSobol(problem.n, problem.seed);
-  {
+  PointSet best;
+  LossTerms best_loss;
+  double stall_reference = 0.0;
+  int since_improvement = 0;
+  StopReason reason = StopReason::kMaxIterations;
+  int it = 0;
+
+  ProgressInfo Info(int iteration) const {
+    ProgressInfo info;
+    info.iteration = iteration;
+    info.max_iterations = max_iterations;
+    info.loss = accepted.loss.total;
+    info.spectrum_loss = accepted.loss.spectrum;
+    info.sw_loss = accepted.loss.sw;
+    info.best_loss = best_loss.total;
+    info.learning_rate = lr;
+    info.reverts = result.reverts;
+    return info;
+  }
+};
+
+OptimizerRun::OptimizerRun(std::unique_ptr<State> state) : s_(std::move(state)) {}
+OptimizerRun::~OptimizerRun() = default;
+
+StatusOr<std::unique_ptr<OptimizerRun>> OptimizerRun::Create(const OptimizationProblem& problem,
+                                                             const OptimizerOptions& options) {
+  if (Status s = ValidateProblem(problem); !s.ok()) return s;
+  if (Status s = ValidateOptions(options); !s.ok()) return s;
+  auto st = std::make_unique<State>();
+  st->problem = problem;
+  st->options = options;
+  return std::unique_ptr<OptimizerRun>(new OptimizerRun(std::move(st)));
+}
+
+int OptimizerRun::iteration() const { return s_->it; }
+
+size_t OptimizerRun::HeldBytes() const {
+  const State& s = *s_;
+  const size_t points = s.accepted.x.capacity() + s.accepted.m.capacity() + s.accepted.v.capacity() +
+                        s.accepted.grad.capacity() + s.best.capacity() + s.trial.x.capacity() +
+                        s.trial.m.capacity() + s.trial.v.capacity() + s.trial.grad.capacity() +
+                        s.sw_grad.capacity() + s.scratch.gradient.capacity() + s.x.capacity() +
+                        (s.problem.start ? s.problem.start->capacity() : 0);
+  size_t weights = 0;
+  for (const State::Phase& p : s.phases) weights += p.weights.capacity();
+  return points * sizeof(Point2) + s.k.capacity() * sizeof(Frequency) +
+         weights * sizeof(double) + 2 * s.problem.n * sizeof(uint32_t) +  // the clamp's orders
+         s.scratch.spectrum.capacity() * sizeof(std::complex<double>) +
+         (s.sw ? s.sw->directions().size() * s.problem.n * (sizeof(double) + sizeof(uint32_t)) : 0);
+}
+
+OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_holds_k,
+                                           const RunCallback& control) {
+  State& s = *s_;
+  if (s.over) return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
+  const OptimizerOptions& options = s.options;
+  const OptimizationProblem& problem = s.problem;
+  if (!s.started) {
+    s.result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
+    const std::vector<double> dirs = AnisotropyDirections(problem.directions);
+    s.k = BuildFrequencySet(s.result.frequency_params, dirs);
+    s.result.frequency_count = s.k.size();
+    engine.SetFrequencies(s.k);
+    s.sw = std::make_unique<SlicedWasserstein>(problem.n, dirs);
+    s.first_lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
+    s.lr = s.first_lr;
+    s.sw_weight = EffectiveSwWeight(options, problem.n);
+    s.max_iterations =
+        EffectiveMaxIterations(options, problem.n, static_cast<int>(problem.directions.size()));
+    std::vector<double> main_weights =
+        SpectrumLossWeights(s.k, options.weighting);
+    const int warmup_iterations =
+        static_cast<int>(std::lround(options.warmup_fraction * s.max_iterations));
+    if (warmup_iterations > 0 && warmup_iterations < s.max_iterations) {
+      s.phases.push_back({SpectrumLossWeights(s.k, options.warmup_weighting),
+                          warmup_iterations});
+    }
+    s.phases.push_back({std::move(main_weights), s.max_iterations});
+    // `initial` is reported under the main weighting, like `final_loss`.
+    s.x = problem.start ? *problem.start : OwenScrambledSobol(problem.n, problem.seed);
+    s.problem.start.reset();  // copied into x; not held while paused
     AdamState start;
-    engine.SetLossWeights(main_weights);
-    EvaluateTotal(x, engine, sw, sw_weight, &scratch, &sw_grad, &start);
-    result.initial = start.loss;
+    engine.SetLossWeights(s.phases.back().weights);
+    EvaluateTotal(s.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &start);
+    s.result.initial = start.loss;
+    s.anneal_step = std::pow(options.anneal_ratio, 1.0 / s.max_iterations);
+    s.started = true;
+  } else if (!engine_holds_k) {
+    // Everything the engine holds for this run: K, and the weights of the
+    // current phase (SetFrequencies resets them).
+    engine.SetFrequencies(s.k);
+    engine.SetLossWeights(s.phases[s.phase].weights);
   }
 
-  AxisStratification stratification;
-  StopReason reason = StopReason::kMaxIterations;
-  double lr = first_lr;
-  LossTerms best_loss;
-  int it = 0;
-  for (const Phase& phase : phases) {
-    engine.SetLossWeights(phase.weights);
-    // `accepted` is the state after the last accepted step; each step is
-    // tried in `trial`, and the two are swapped when it is accepted (no
-    // copies of the O(N) state per iteration).
-    AdamState accepted;
-    accepted.x = std::move(x);
-    accepted.m.assign(problem.n, {0.0, 0.0});
-    accepted.v.assign(problem.n, {0.0, 0.0});
-    EvaluateTotal(accepted.x, engine, sw, sw_weight, &scratch, &sw_grad, &accepted);
-    AdamState trial;
-    PointSet best = accepted.x;
-    best_loss = accepted.loss;
-    double stall_reference = best_loss.total;
-    int since_improvement = 0;
-    lr = first_lr;
-    reason = StopReason::kMaxIterations;
-
-    auto report = [&](int iteration) {
-      if (!progress) return true;
-      ProgressInfo info;
-      info.iteration = iteration;
-      info.max_iterations = max_iterations;
-      info.loss = accepted.loss.total;
-      info.spectrum_loss = accepted.loss.spectrum;
-      info.sw_loss = accepted.loss.sw;
-      info.best_loss = best_loss.total;
-      info.learning_rate = lr;
-      info.reverts = result.reverts;
-      return progress(info);
-    };
-
-    const double anneal_step = std::pow(options.anneal_ratio, 1.0 / max_iterations);
-    while (it < phase.end_iteration) {
-      ++it;
-      lr *= anneal_step;
-      AdamStep(accepted, options, lr, &trial);
-      if (options.stratify_axes) stratification.Apply(&trial.x);
-      EvaluateTotal(trial.x, engine, sw, sw_weight, &scratch, &sw_grad, &trial);
+  AdamState& accepted = s.accepted;
+  AdamState& trial = s.trial;
+  for (; s.phase < s.phases.size(); ++s.phase, s.phase_started = false) {
+    const State::Phase& phase = s.phases[s.phase];
+    if (!s.phase_started) {
+      engine.SetLossWeights(phase.weights);
+      // `accepted` is the state after the last accepted step; each step is
+      // tried in `trial`, and the two are swapped when it is accepted (no
+      // copies of the O(N) state per iteration).
+      accepted = AdamState();
+      accepted.x = std::move(s.x);
+      accepted.m.assign(problem.n, {0.0, 0.0});
+      accepted.v.assign(problem.n, {0.0, 0.0});
+      EvaluateTotal(accepted.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &accepted);
+      trial = AdamState();
+      s.best = accepted.x;
+      s.best_loss = accepted.loss;
+      s.stall_reference = s.best_loss.total;
+      s.since_improvement = 0;
+      s.lr = s.first_lr;
+      s.reason = StopReason::kMaxIterations;
+      s.phase_started = true;
+    }
+    while (s.it < phase.end_iteration) {
+      const int it = ++s.it;
+      s.lr *= s.anneal_step;
+      AdamStep(accepted, options, s.lr, &trial);
+      if (options.stratify_axes) s.stratification.Apply(&trial.x);
+      EvaluateTotal(trial.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &trial);
 
       const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
       const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
@@ -287,64 +352,94 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
       const bool diverged =
           !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
       if (diverged) {
-        lr /= options.revert_divisor;
-        ++result.reverts;
-        if (lr < options.min_learning_rate) {
-          reason = StopReason::kLearningRateFloor;
+        s.lr /= options.revert_divisor;
+        ++s.result.reverts;
+        if (s.lr < options.min_learning_rate) {
+          s.reason = StopReason::kLearningRateFloor;
           break;
         }
       } else {
         std::swap(accepted, trial);
-        if (accepted.loss.total < best_loss.total) {
-          best_loss = accepted.loss;
-          best = accepted.x;
+        if (accepted.loss.total < s.best_loss.total) {
+          s.best_loss = accepted.loss;
+          s.best = accepted.x;
         }
-        if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
-          stall_reference = best_loss.total;
-          since_improvement = 0;
-        } else if (++since_improvement >= options.stall_iterations) {
+        if (s.best_loss.total < (1.0 - options.stall_tolerance) * s.stall_reference) {
+          s.stall_reference = s.best_loss.total;
+          s.since_improvement = 0;
+        } else if (++s.since_improvement >= options.stall_iterations) {
           if (options.plateau_factor >= 1.0) {
-            reason = StopReason::kStalled;
+            s.reason = StopReason::kStalled;
             break;
           }
-          lr *= options.plateau_factor;
-          since_improvement = 0;
-          stall_reference = best_loss.total;
-          if (lr < options.min_learning_rate) {
-            reason = StopReason::kStalled;
+          s.lr *= options.plateau_factor;
+          s.since_improvement = 0;
+          s.stall_reference = s.best_loss.total;
+          if (s.lr < options.min_learning_rate) {
+            s.reason = StopReason::kStalled;
             break;
           }
         }
       }
-      if (options.progress_every > 0 && it % options.progress_every == 0 && !report(it)) {
-        reason = StopReason::kCancelled;
-        break;
+      if (options.progress_every > 0 && it % options.progress_every == 0 && control) {
+        const RunControl c = control(s.Info(it));
+        if (c == RunControl::kCancel) {
+          s.reason = StopReason::kCancelled;
+          break;
+        }
+        if (c == RunControl::kPause && it < s.max_iterations) {
+          // Drop what the next iteration overwrites anyway.
+          trial = AdamState();
+          s.scratch = SpectrumEvaluation();
+          s.sw_grad = std::vector<Point2>();
+          return Outcome::kPaused;
+        }
       }
     }
-    x = std::move(best);
+    s.x = std::move(s.best);
+    s.best = PointSet();
     // A phase that stalls hands over to the next (which then has the rest of
     // the budget); a cancel ends the run.
-    if (reason == StopReason::kCancelled) break;
-    if (&phase == &phases.back()) report(it);
+    if (s.reason == StopReason::kCancelled) break;
+    if (s.phase + 1 == s.phases.size() && control) control(s.Info(s.it));
   }
-  result.iterations = it;
+  s.over = true;
+  s.result.iterations = s.it;
   if ((options.zero_radius > 0.0 || options.final_margin > 0.0) &&
-      reason != StopReason::kCancelled) {
+      s.reason != StopReason::kCancelled) {
     const std::vector<Frequency> low = LowFrequencies(options.zero_radius);
     for (int round = 0; round < 3; ++round) {
-      ProjectLowFrequencies(&x, low, 2);
-      if (options.stratify_axes) stratification.Apply(&x, options.final_margin);
+      ProjectLowFrequencies(&s.x, low, 2);
+      if (options.stratify_axes) s.stratification.Apply(&s.x, options.final_margin);
     }
-    ProjectLowFrequencies(&x, low, 2);
+    ProjectLowFrequencies(&s.x, low, 2);
     AdamState projected;
-    EvaluateTotal(x, engine, sw, sw_weight, &scratch, &sw_grad, &projected);
-    best_loss = projected.loss;
+    EvaluateTotal(s.x, engine, *s.sw, s.sw_weight, &s.scratch, &s.sw_grad, &projected);
+    s.best_loss = projected.loss;
   }
-  result.points = std::move(x);
-  result.final_loss = best_loss;
-  result.final_learning_rate = lr;
-  result.stop_reason = reason;
-  return result;
+  return s.reason == StopReason::kCancelled ? Outcome::kCancelled : Outcome::kFinished;
+}
+
+OptimizationResult OptimizerRun::TakeResult() {
+  State& s = *s_;
+  s.result.points = std::move(s.x);
+  s.result.final_loss = s.best_loss;
+  s.result.final_learning_rate = s.lr;
+  s.result.stop_reason = s.reason;
+  return std::move(s.result);
+}
+
+StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
+                                      const OptimizerOptions& options, SpectralEngine& engine,
+                                      const ProgressCallback& progress) {
+  auto run = OptimizerRun::Create(problem, options);
+  if (!run.ok()) return run.status();
+  RunCallback control;
+  if (progress) {
+    control = [&](const ProgressInfo& p) { return progress(p) ? RunControl::kContinue : RunControl::kCancel; };
+  }
+  (*run)->Resume(engine, false, control);
+  return (*run)->TakeResult();
 }
 
 }  // namespace alignset

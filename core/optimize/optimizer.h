@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -190,6 +191,46 @@ Status ValidateOptions(const OptimizerOptions& options);
 StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
                                       const OptimizerOptions& options, SpectralEngine& engine,
                                       const ProgressCallback& progress = nullptr);
+
+// What a resumable run's callback asks for after a progress report.
+enum class RunControl { kContinue, kPause, kCancel };
+using RunCallback = std::function<RunControl(const ProgressInfo&)>;
+
+// Optimize() in slices: a run stops between two iterations when its callback
+// asks to pause, holds its whole loop state (the Adam state, the best set,
+// the schedule's counters), and goes on later, on the same engine or another
+// one, ending with bit for bit the set that one uninterrupted Optimize()
+// gives (the engines' results depend only on K and the points). The server
+// uses it to share its workers between clients: a long optimization yields
+// its worker to someone else's short one and resumes afterwards.
+class OptimizerRun {
+ public:
+  enum class Outcome { kFinished, kPaused, kCancelled };
+
+  // Validates the problem and options; allocates nothing large yet.
+  static StatusOr<std::unique_ptr<OptimizerRun>> Create(const OptimizationProblem& problem,
+                                                        const OptimizerOptions& options);
+  ~OptimizerRun();
+
+  // Runs from where the last slice stopped until the run finishes or
+  // `control` (called every options.progress_every iterations, and once at
+  // the end, whose answer is then ignored) asks to pause or cancel.
+  // `engine_holds_k`: nothing else ran on `engine` since this run's last
+  // slice, so its frequency set is still this run's; otherwise it is set
+  // again.
+  Outcome Resume(SpectralEngine& engine, bool engine_holds_k, const RunCallback& control);
+
+  int iteration() const;
+  // What the run holds between slices (state, best set, K), in bytes.
+  size_t HeldBytes() const;
+  // After kFinished or kCancelled: the best set so far and its figures.
+  OptimizationResult TakeResult();
+
+ private:
+  struct State;
+  explicit OptimizerRun(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+};
 
 // L_Spec, L_SW and the total of a given set (no gradient), for reporting.
 LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,

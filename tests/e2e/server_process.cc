@@ -13,14 +13,20 @@
 
 namespace alignset::e2e {
 
+std::string ServerBinary() {
+  const char* other = std::getenv("ALIGNSET_E2E_SERVER");
+  return other != nullptr && *other != '\0' ? other : ALIGNSET_SERVER_PATH;
+}
+
 ServerProcess::ServerProcess(const std::string& dir, const std::vector<std::string>& extra) {
   db_path_ = dir + "/cache.sqlite";
   const std::string port_file = dir + "/port";
   std::filesystem::remove(port_file);
-  std::vector<std::string> args = {ALIGNSET_SERVER_PATH, "--listen", "127.0.0.1:0", "--port-file",
+  std::vector<std::string> args = {ServerBinary(), "--listen", "127.0.0.1:0", "--port-file",
                                    port_file, "--db", db_path_, "--log-level", "warn"};
   args.insert(args.end(), extra.begin(), extra.end());
   const std::string log = dir + "/server.log";
+  log_path_ = log;
   pid_ = fork();
   if (pid_ == 0) {
     FILE* f = std::fopen(log.c_str(), "a");
@@ -40,7 +46,11 @@ ServerProcess::ServerProcess(const std::string& dir, const std::vector<std::stri
   }
   for (int i = 0; i < 300; ++i) {  // up to 30 s on a loaded machine
     std::ifstream in(port_file);
-    if (in >> port_ && port_ > 0) return;
+    if (in >> port_ && port_ > 0) {
+      std::string word;
+      if (in >> word && word == "metrics") in >> metrics_port_;
+      return;
+    }
     int status = 0;
     if (waitpid(pid_, &status, WNOHANG) == pid_) {
       std::ifstream l(log);

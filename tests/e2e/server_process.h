@@ -7,6 +7,11 @@
 
 namespace alignset::e2e {
 
+// The server binary the tests start: the one built with them, or the one
+// named by $ALIGNSET_E2E_SERVER (to run today's tests against an older build
+// and see which of them it fails).
+std::string ServerBinary();
+
 // alignset-server as a child process: started on 127.0.0.1 with port 0 and a
 // --port-file, so tests never race for a port. The destructor stops it with
 // SIGTERM (or reaps it if a test killed it).
@@ -22,6 +27,9 @@ class ServerProcess {
   const std::string& error() const { return error_; }
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
   int port() const { return port_; }
+  // The Prometheus port, when started with --metrics-listen; else 0.
+  int metrics_port() const { return metrics_port_; }
+  std::string log_path() const { return log_path_; }
   const std::string& db_path() const { return db_path_; }
   pid_t pid() const { return pid_; }
 
@@ -33,6 +41,8 @@ class ServerProcess {
   std::string db_path_;
   pid_t pid_ = -1;
   int port_ = 0;
+  int metrics_port_ = 0;
+  std::string log_path_;
 };
 
 // A fresh directory under /tmp, removed by the destructor.

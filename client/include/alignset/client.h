@@ -154,6 +154,9 @@ struct ServiceMetrics {
 
 struct CacheInfo {
   int64_t sets = 0, bytes = 0, one_direction_sets = 0, two_direction_sets = 0;
+  // The file has damaged pages: the counts cover the readable rows (repair:
+  // `alignset cache recover`).
+  bool damaged = false;
   std::string database_path;
   std::string profile_hint;
   ServiceMetrics metrics;

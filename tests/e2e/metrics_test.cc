@@ -1,0 +1,90 @@
+// The Prometheus endpoint (issue 15, Operations): GET /metrics on its own
+// port, fetched over a plain HTTP socket from the real server on loopback.
+#include <google/protobuf/descriptor.h>
+#include <gtest/gtest.h>
+
+#include "alignset/v1/alignset.grpc.pb.h"
+#include "tests/e2e/e2e_util.h"
+#include "tests/e2e/server_process.h"
+
+namespace alignset::e2e {
+namespace {
+
+const std::vector<std::string> kMetricsServer = {
+    "--max-iterations", "60",  "--workers",        "1",          "--threads-per-worker",
+    "1",                "--max-n", "4096",         "--metrics-listen", "127.0.0.1:0"};
+
+std::map<std::string, double> Scrape(int port) {
+  const HttpReply r = HttpRequest(port, "GET", "/metrics");
+  EXPECT_EQ(r.status, 200) << r.headers;
+  EXPECT_NE(r.headers.find("text/plain; version=0.0.4"), std::string::npos) << r.headers;
+  return ParsePrometheus(r.body);
+}
+
+TEST(MetricsEndpoint, CountersAndHistogramsMoveAfterRequestsAndMatchGetMetrics) {
+  TempDir dir;
+  ServerProcess server(dir.path(), kMetricsServer);
+  ASSERT_EQ(server.error(), "");
+  ASSERT_GT(server.metrics_port(), 0);
+  ASSERT_NE(server.metrics_port(), server.port());
+
+  const auto before = Scrape(server.metrics_port());
+  EXPECT_EQ(before.at("alignset_requests_get_total"), 0.0);
+  EXPECT_EQ(before.at("alignset_optimizations_completed_total"), 0.0);
+  EXPECT_EQ(before.at("alignset_get_latency_seconds_count"), 0.0);
+  EXPECT_EQ(before.at("alignset_database_writable"), 1.0);
+  // Every field GetMetrics reports is exposed.
+  const auto* fields = v1::MetricsResponse::descriptor();
+  for (int i = 0; i < fields->field_count(); ++i) {
+    const std::string name = "alignset_" + fields->field(i)->name();
+    EXPECT_TRUE(before.count(name) || before.count(name + "_total")) << name;
+  }
+
+  auto stub = OwnStub(server.address());
+  for (int i = 0; i < 2; ++i) {  // optimized, then a hit
+    grpc::ClientContext ctx;
+    v1::AlignedSetResponse resp;
+    ASSERT_TRUE(stub->GetAlignedSet(&ctx, SetRequest(64, {10.0}), &resp).ok());
+  }
+  {
+    grpc::ClientContext ctx;
+    v1::AlignedSetResponse resp;
+    EXPECT_EQ(stub->GetAlignedSet(&ctx, SetRequest(7, {10.0}), &resp).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
+  }
+
+  const auto after = Scrape(server.metrics_port());
+  EXPECT_EQ(after.at("alignset_requests_get_total"), 3.0);
+  EXPECT_EQ(after.at("alignset_requests_invalid_total"), 1.0);
+  EXPECT_EQ(after.at("alignset_optimizations_started_total"), 1.0);
+  EXPECT_EQ(after.at("alignset_optimizations_completed_total"), 1.0);
+  EXPECT_EQ(after.at("alignset_cache_hits_memory_total"), 1.0);
+  EXPECT_EQ(after.at("alignset_get_latency_seconds_count"), 3.0);
+  EXPECT_EQ(after.at("alignset_get_latency_seconds_bucket{le=\"+Inf\"}"), 3.0);
+  EXPECT_EQ(after.at("alignset_optimization_seconds_count"), 1.0);
+  EXPECT_GT(after.at("alignset_optimize_seconds_total"), 0.0);
+  EXPECT_GT(after.at("alignset_uptime_seconds"), before.at("alignset_uptime_seconds"));
+  // The same figures as GetMetrics (which the scrape itself does not move).
+  const v1::MetricsResponse m = GetMetrics(server.address());
+  EXPECT_EQ(after.at("alignset_requests_get_total"), static_cast<double>(m.requests_get()));
+  EXPECT_EQ(after.at("alignset_cache_misses_total"), static_cast<double>(m.cache_misses()));
+  EXPECT_EQ(after.at("alignset_optimize_seconds_total"), m.optimize_seconds_total());
+
+  EXPECT_EQ(HttpRequest(server.metrics_port(), "GET", "/").status, 404);
+  EXPECT_EQ(HttpRequest(server.metrics_port(), "POST", "/metrics").status, 405);
+}
+
+TEST(MetricsEndpoint, AMetricsPortInUseFailsTheStartWithAClearMessage) {
+  TempDir first_dir, second_dir;
+  ServerProcess first(first_dir.path(), kMetricsServer);
+  ASSERT_EQ(first.error(), "");
+  std::vector<std::string> flags = kMetricsServer;
+  flags.back() = "127.0.0.1:" + std::to_string(first.metrics_port());
+  ServerProcess second(second_dir.path(), flags);
+  ASSERT_NE(second.error(), "");
+  EXPECT_NE(second.error().find("cannot serve metrics"), std::string::npos) << second.error();
+  EXPECT_NE(second.error().find("already in use"), std::string::npos) << second.error();
+}
+
+}  // namespace
+}  // namespace alignset::e2e
