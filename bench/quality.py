@@ -3,7 +3,7 @@
 
 For every N and θ: optimize a 3-direction set (0°, 90°, θ) with the alignset CLI,
 measure the Cranley-Patterson-rotated variance of the step edge with normal θ
-(4096 shifts) beside Owen-scrambled Sobol (mean of 4 scrambles, same shifts),
+(4096 shifts) beside Owen-scrambled Sobol (mean of 16 scrambles, same shifts),
 and the variance of the set optimized for θ + 45° on the same edge. Prints the
 table, the ratios and the fitted log-log slopes; writes a PNG plot.
 
@@ -25,10 +25,10 @@ def run(cmd):
 
 
 def optimize(cli, n, theta, args, out_dir):
-    path = os.path.join(out_dir, f"aligned_n{n}_t{theta:g}.txt")
+    path = os.path.join(out_dir, f"aligned_{args.profile}_n{n}_t{theta:g}.txt")
     if not os.path.exists(path) or args.force:
         cmd = [cli, "optimize", "--n", str(n), "--dir", f"{theta:g}", "--out", path,
-               "--engine", args.engine, "--threads", str(args.threads)]
+               "--engine", args.engine, "--threads", str(args.threads), "--profile", args.profile]
         if args.max_iterations:
             cmd += ["--max-iterations", str(args.max_iterations)]
         out = run(cmd)
@@ -38,8 +38,9 @@ def optimize(cli, n, theta, args, out_dir):
     return path
 
 
-def evaluate(cli, path, normal, shifts):
-    out = run([cli, "evaluate", path, "--normal", f"{normal:g}", "--shifts", str(shifts)])
+def evaluate(cli, path, normal, shifts, scrambles):
+    out = run([cli, "evaluate", path, "--normal", f"{normal:g}", "--shifts", str(shifts),
+               "--scrambles", str(scrambles)])
     m = re.search(r"^variance\s+(\S+)\s+(\S+)", out, re.M)
     return float(m.group(1)), float(m.group(2))
 
@@ -61,6 +62,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--max-iterations", type=int, default=0)
     ap.add_argument("--shifts", type=int, default=4096)
+    ap.add_argument("--scrambles", type=int, default=16)
+    ap.add_argument("--profile", default="current", choices=["current", "supplement"])
     ap.add_argument("--out-dir", default="build/quality")
     ap.add_argument("--png", default="build/quality/quality.png")
     ap.add_argument("--force", action="store_true", help="re-optimize sets already on disk")
@@ -74,8 +77,8 @@ def main():
         for n in ns:
             aligned = optimize(args.cli, n, theta, args, args.out_dir)
             rotated = optimize(args.cli, n, theta + 45, args, args.out_dir)
-            v_set, v_sobol = evaluate(args.cli, aligned, theta, args.shifts)
-            v_rot, _ = evaluate(args.cli, rotated, theta, args.shifts)
+            v_set, v_sobol = evaluate(args.cli, aligned, theta, args.shifts, args.scrambles)
+            v_rot, _ = evaluate(args.cli, rotated, theta, args.shifts, args.scrambles)
             rows.append((theta, n, v_set, v_sobol, v_rot))
 
     print()
