@@ -267,6 +267,18 @@ StatusOr<std::unique_ptr<Integrand>> MakeIntegrand(const std::string& spec) {
     }
     out = PolygonIndicator(std::to_string(k) + "-gon",
                            RegularPolygon({0.5, 0.5}, 0.35, k, arg(1, 0.0)));
+  } else if (kind == "edges") {
+    if (args.size() < 3 || args.size() > 16) {
+      return Status::InvalidArgument("integrand '" + spec +
+                                     "': expected edges:D1:D2:D3[:...], 3 to 16 edge normals");
+    }
+    Polygon polygon = PolygonWithEdgeNormals(args, 0.7);
+    if (polygon.empty()) {
+      return Status::InvalidArgument("integrand '" + spec +
+                                     "': the edge normals must be distinct modulo 180 and spread "
+                                     "so that no gap between outward normals reaches 180 degrees");
+    }
+    out = PolygonIndicator(std::to_string(args.size()) + "-direction polygon", std::move(polygon));
   } else if (kind == "gaussian") {
     if (Status s = arity(0, 1); !s.ok()) return s;
     if (!(arg(0, 0.15) > 0.0)) return Status::InvalidArgument("gaussian sigma must be > 0");
@@ -280,7 +292,7 @@ StatusOr<std::unique_ptr<Integrand>> MakeIntegrand(const std::string& spec) {
   } else {
     return Status::InvalidArgument("unknown integrand '" + kind +
                                    "' (expected step, smoothstep, disk, triangle, polygon, "
-                                   "gaussian, product or boundary)");
+                                   "edges, gaussian, product or boundary)");
   }
   return out;
 }

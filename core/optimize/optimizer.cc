@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/optimize/axis_stratification.h"
 #include "core/optimize/low_frequency_projection.h"
 #include "core/sampling/owen_sobol.h"
+#include "core/spectral/direction_budget.h"
 #include "core/optimize/sliced_wasserstein.h"
 
 namespace alignset {
@@ -61,7 +63,28 @@ void AdamStep(const AdamState& from, const OptimizerOptions& o, double lr, AdamS
   }
 }
 
+std::string DegreesText(double deg) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", deg);
+  return text;
+}
+
 }  // namespace
+
+Status CheckDistinctDirections(const std::vector<double>& arbitrary) {
+  const std::vector<double> all = AnisotropyDirections(arbitrary);
+  for (size_t i = 0; i < all.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const double gap = std::fabs(all[i] - all[j]);
+      if (std::min(gap, 180.0 - gap) < 1e-9) {
+        return Status::InvalidArgument(
+            "duplicate direction " + DegreesText(all[i]) +
+            (j < 2 ? " (0 and 90 are always included)" : " (given twice, modulo 180)"));
+      }
+    }
+  }
+  return Status::Ok();
+}
 
 double DefaultLearningRate(const std::vector<Frequency>& k) {
   double vmax = 1.0;
@@ -102,12 +125,16 @@ Status ValidateProblem(const OptimizationProblem& p) {
                                    std::to_string(kMinPoints) + ", " +
                                    std::to_string(kMaxPoints) + "]");
   }
-  if (p.directions.empty() || p.directions.size() > 2) {
-    return Status::InvalidArgument("expected one or two arbitrary directions, got " +
+  if (p.directions.empty() || p.directions.size() > kMaxArbitraryDirections) {
+    return Status::InvalidArgument("expected 1 to " + std::to_string(kMaxArbitraryDirections) +
+                                   " arbitrary directions, got " +
                                    std::to_string(p.directions.size()));
   }
   for (double d : p.directions) {
     if (!std::isfinite(d)) return Status::InvalidArgument("direction must be a finite angle");
+  }
+  if (p.directions.size() > 2) {
+    if (Status s = CheckDistinctDirections(p.directions); !s.ok()) return s;
   }
   if (p.start) {
     if (p.start->size() != p.n) {
@@ -193,6 +220,10 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
 
   OptimizationResult result;
   result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
+  if (!problem.frequency_params && problem.directions.size() > 2) {
+    result.frequency_params = FrequencyParamsForDirections(
+        problem.n, static_cast<int>(problem.directions.size()));
+  }
   const std::vector<double> dirs = AnisotropyDirections(problem.directions);
   const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
   result.frequency_count = k.size();

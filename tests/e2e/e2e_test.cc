@@ -173,6 +173,7 @@ TEST_F(E2eTest, BadRequestsGetInvalidArgumentAndTheServerKeepsServing) {
   ExpectStatus(get(64, {std::nan("")}), C::INVALID_ARGUMENT, "not a finite number");
   ExpectStatus(get(64, {-INFINITY}), C::INVALID_ARGUMENT, "not a finite number");
   ExpectStatus(get(64, {10, 20, 30}), C::INVALID_ARGUMENT, "one or two directions");
+  ExpectStatus(get(64, {10, 20, 30}), C::INVALID_ARGUMENT, "made locally: alignset optimize");
   ExpectStatus(get(64, {}), C::INVALID_ARGUMENT, "one or two directions");
 
   v1::SamplesRequest sreq;
