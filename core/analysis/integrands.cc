@@ -166,8 +166,12 @@ std::unique_ptr<PiecewiseLinearIntegrand> StepEdge(double normal_deg, double off
   std::vector<PiecewiseLinearIntegrand::Piece> pieces;
   Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
   if (!p.empty()) pieces.push_back({std::move(p), {1.0, {0.0, 0.0}}});
-  return std::make_unique<PiecewiseLinearIntegrand>("step " + Degrees(normal_deg),
-                                                    std::move(pieces));
+  // The offset is part of the name when there is one, so that a table of
+  // several parallel edges tells them apart.
+  std::ostringstream name;
+  name << "step " << Degrees(normal_deg);
+  if (offset != 0.0) name << " off " << offset;
+  return std::make_unique<PiecewiseLinearIntegrand>(name.str(), std::move(pieces));
 }
 
 std::unique_ptr<PiecewiseLinearIntegrand> SmoothedStep(double normal_deg, double width,
@@ -186,6 +190,7 @@ std::unique_ptr<PiecewiseLinearIntegrand> SmoothedStep(double normal_deg, double
   }
   std::ostringstream name;
   name << "smoothed step " << Degrees(normal_deg) << " w=" << width;
+  if (offset != 0.0) name << " off " << offset;
   return std::make_unique<PiecewiseLinearIntegrand>(name.str(), std::move(pieces));
 }
 
