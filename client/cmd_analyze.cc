@@ -59,6 +59,7 @@ double MeanOver(const std::vector<double>& p, int lo, int hi) {
   double sum = 0.0;
   int count = 0;
   for (int i = std::max(lo, 1); i <= std::min<int>(hi, static_cast<int>(p.size()) - 1); ++i) {
+    if (std::isnan(p[i])) continue;  // no integer frequency on the line there
     sum += p[i];
     ++count;
   }

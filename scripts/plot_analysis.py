@@ -40,8 +40,9 @@ def spectrum_axes(fig, grid, row, doc, compact=False):
 
     ax = fig.add_subplot(grid[row, 2])
     for d in doc["directional"]:
-        p = d["power"]
-        ax.semilogy(range(1, len(p)), [max(x, 1e-6) for x in p[1:]], lw=0.9,
+        # null: no integer frequency lies on the line at that |v|.
+        pts = [(t, max(x, 1e-6)) for t, x in enumerate(d["power"]) if t > 0 and x is not None]
+        ax.semilogy([t for t, _ in pts], [x for _, x in pts], lw=0.9, marker=".", ms=2,
                     label=f"{d['deg']:g}°")
     ax.axhline(1.0, color="gray", lw=0.8, ls="--")
     ax.set_xlabel("|v| along the direction")

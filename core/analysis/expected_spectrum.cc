@@ -91,7 +91,7 @@ std::vector<double> DirectionalProfile(const ExpectedSpectrum& s, double deg) {
       count[t] += 1.0;
     }
   }
-  for (int t = 0; t <= m; ++t) sum[t] = count[t] > 0 ? sum[t] / count[t] : 0.0;
+  for (int t = 1; t <= m; ++t) sum[t] = count[t] > 0 ? sum[t] / count[t] : NAN;
   return sum;
 }
 

@@ -40,7 +40,8 @@ std::vector<double> RadialProfile(const ExpectedSpectrum& s);
 
 // Energy along a direction against |v|: entry t (t = 0 .. M) is the mean
 // power of the frequencies within 1/2 of the line through 0 along `deg`
-// (|v.d_perp| <= 1/2) whose projection rounds to +-t (entry 0 is 0: DC).
+// (|v.d_perp| <= 1/2) whose projection rounds to +-t (entry 0 is 0: DC; an
+// entry no integer frequency falls on, as happens along most angles, is NaN).
 // This is the profile a strip of width 1 suppresses.
 std::vector<double> DirectionalProfile(const ExpectedSpectrum& s, double deg);
 

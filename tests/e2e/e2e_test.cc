@@ -204,7 +204,7 @@ TEST_F(E2eTest, BadRequestsGetInvalidArgumentAndTheServerKeepsServing) {
   auto ok = Client()->GetAlignedSet(64, {45.0});
   ASSERT_TRUE(ok.ok()) << ok.status().message();
   EXPECT_EQ(ok->points.size(), 64u);
-  EXPECT_EQ(Metrics().requests_invalid, 9u);
+  EXPECT_EQ(Metrics().requests_invalid, 10u);
 }
 
 int64_t CountRows(const std::string& db) {
