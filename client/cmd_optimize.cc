@@ -1,4 +1,6 @@
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -9,6 +11,9 @@
 #include "client/point_file.h"
 #include "client/progress.h"
 #include "core/optimize/optimizer.h"
+#include "core/spectral/direction_budget.h"
+#include "core/util/angles.h"
+#include "core/spectral/scaled_loss_engine.h"
 #include "core/spectral/spectral_engine.h"
 
 namespace alignset::cli {
@@ -26,6 +31,9 @@ struct OptimizeOptions {
   std::optional<double> length, width, radius;
   // -m: several sets, one per seed, written as a multi-set file.
   std::optional<int> sets;
+  std::string revert_on = "spectrum";
+  // s in L = s L_Spec + c L_SW (core/spectral/scaled_loss_engine.h).
+  double spectrum_weight = 1.0;
   // "current" (algorithm version 3) or "supplement" (the paper's flat loss
   // and K, alignset's version 2), for comparisons.
   std::string profile = "current";
@@ -35,9 +43,24 @@ int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
 int Failure(const Status& s) { return ReportError("optimize", s, kExitFailure); }
 
 int RunOptimize(const OptimizeOptions& o) {
-  if (o.dirs.size() > 2) {
-    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees), got " +
-                                         std::to_string(o.dirs.size())));
+  if (o.dirs.size() > static_cast<size_t>(kMaxArbitraryDirections)) {
+    return Usage(Status::InvalidArgument(
+        "give 1 to " + std::to_string(kMaxArbitraryDirections) +
+        " --dir angles (degrees; 0 and 90 are always included), got " +
+        std::to_string(o.dirs.size())));
+  }
+  // Two equal --dir are a mistake on the command line, whatever their count
+  // (the core takes a repeated pair only for the service's key space).
+  for (size_t i = 0; i < o.dirs.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const double gap = std::fabs(ReduceDirection(o.dirs[i]) - ReduceDirection(o.dirs[j]));
+      if (std::min(gap, 180.0 - gap) < 1e-9) {
+        char text[128];
+        std::snprintf(text, sizeof(text), "--dir %g repeats --dir %g (modulo 180)", o.dirs[i],
+                      o.dirs[j]);
+        return Usage(Status::InvalidArgument(text));
+      }
+    }
   }
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
@@ -52,13 +75,22 @@ int RunOptimize(const OptimizeOptions& o) {
     options.zero_radius = s.zero_radius;
     options.final_margin = s.final_margin;
   }
+  if (o.revert_on == "total") {
+    options.divergence_signal = DivergenceSignal::kTotalLoss;
+  } else if (o.revert_on != "spectrum") {
+    return Usage(Status::InvalidArgument("--revert-on must be spectrum or total, got '" +
+                                         o.revert_on + "'"));
+  }
   OptimizationProblem problem;
   problem.n = static_cast<uint32_t>(o.n);
   problem.directions = o.dirs;
   problem.seed = static_cast<uint64_t>(o.seed);
   if (o.length || o.width || o.radius || supplement) {
+    // The supplement profile keeps Table 1's strips whatever the count.
     const FrequencyParams fp =
-        supplement ? SupplementFrequencyParams(problem.n) : DefaultFrequencyParams(problem.n);
+        supplement ? SupplementFrequencyParams(problem.n)
+                   : FrequencyParamsForDirections(problem.n,
+                                                  static_cast<int>(problem.directions.size()));
     problem.frequency_params = FrequencyParams{o.length.value_or(fp.length),
                                                o.width.value_or(fp.width),
                                                o.radius.value_or(fp.radius)};
@@ -71,8 +103,14 @@ int RunOptimize(const OptimizeOptions& o) {
       return Failure(s);
     }
   }
-  auto engine = MakeSpectralEngine(*kind, static_cast<int>(o.threads));
-  if (!engine.ok()) return Failure(engine.status());
+  auto made = MakeSpectralEngine(*kind, static_cast<int>(o.threads));
+  if (!made.ok()) return Failure(made.status());
+  std::unique_ptr<SpectralEngine> inner = std::move(made).value();
+  std::unique_ptr<SpectralEngine> scaled;
+  if (o.spectrum_weight != 1.0) {
+    scaled = std::make_unique<ScaledLossEngine>(*inner, o.spectrum_weight);
+  }
+  SpectralEngine* engine = scaled ? scaled.get() : inner.get();
 
   // -m M: M sets from the seeds seed, seed + 1, ... (UTK's -m).
   const int sets = o.sets.value_or(1);
@@ -83,7 +121,7 @@ int RunOptimize(const OptimizeOptions& o) {
     Progress progress(sets == 1 ? "optimize"
                                 : "optimize " + std::to_string(i + 1) + "/" + std::to_string(sets));
     const auto t0 = std::chrono::steady_clock::now();
-    auto result = Optimize(problem, options, **engine, [&](const ProgressInfo& p) {
+    auto result = Optimize(problem, options, *engine, [&](const ProgressInfo& p) {
       char detail[160];
       std::snprintf(detail, sizeof(detail), "loss %.5g (spec %.4g sw %.3g) lr %.2g reverts %d",
                     p.loss, p.spectrum_loss, p.sw_loss, p.learning_rate, p.reverts);
@@ -108,7 +146,7 @@ int RunOptimize(const OptimizeOptions& o) {
                   "loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s",
                   i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", problem.n,
                   dir_text.c_str(), static_cast<unsigned long long>(o.seed + i), r.final_loss.total,
-                  r.final_loss.spectrum, r.final_loss.sw, r.iterations, (*engine)->name().c_str());
+                  r.final_loss.spectrum, r.final_loss.sw, r.iterations, engine->name().c_str());
     comment += line;
     points.push_back(r.points);
   }
@@ -123,7 +161,7 @@ int RunOptimize(const OptimizeOptions& o) {
   std::fprintf(report, "frequencies    |K| = %zu (length %.1f, width %.2f, radius %.1f)\n",
                first.frequency_count, first.frequency_params.length, first.frequency_params.width,
                first.frequency_params.radius);
-  std::fprintf(report, "engine         %s\n", (*engine)->name().c_str());
+  std::fprintf(report, "engine         %s\n", engine->name().c_str());
   for (int i = 0; i < sets; ++i) {
     const OptimizationResult& r = results[i];
     if (sets > 1) {
@@ -152,7 +190,9 @@ void AddOptimizeCommand(CLI::App& app) {
   c->add_option("-n,--n", o->n, "number of points")
       ->required()
       ->check(IntegerIn(kMinPoints, kMaxPoints));
-  c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
+  c->add_option("--dir", o->dirs,
+                "direction in degrees (edge normal), 1 to 8 times: 3 to 10 low-energy\n"
+                "directions with the axes (more than two: the strips share the budget)")
       ->required()
       ->allow_extra_args(false)
       ->check(FiniteNumber());
@@ -185,6 +225,13 @@ void AddOptimizeCommand(CLI::App& app) {
       ->group(tuning);
   c->add_option("--sw-weight", o->optimizer.sw_weight, "weight c of the SW loss (0: 4N)")
       ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--spectrum-weight", o->spectrum_weight,
+                "weight s of the spectrum loss, L = s L_Spec + c L_SW (0: SW alone)")
+      ->check(FiniteIn(0.0, 1e6))
+      ->group(tuning);
+  c->add_option("--revert-on", o->revert_on,
+                "loss the revert rule watches: spectrum (default) or total")
       ->group(tuning);
   c->add_option("--anneal", o->optimizer.anneal_ratio, "final / first learning rate")
       ->check(FiniteNumber())

@@ -12,6 +12,10 @@ void AddEvaluateCommand(CLI::App& app);
 void AddSampleCommand(CLI::App& app);
 void AddAlignCommand(CLI::App& app);
 void AddVarianceCommand(CLI::App& app);
+// Expected power spectra and their profiles (analyze), variance against N
+// (convergence); PNGs through scripts/plot_analysis.py (client/plot_script.h).
+void AddAnalyzeCommand(CLI::App& app);
+void AddConvergenceCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 void AddCacheCommand(CLI::App& app);

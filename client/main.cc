@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   AddSampleCommand(app);
   AddAlignCommand(app);
   AddVarianceCommand(app);
+  AddAnalyzeCommand(app);
+  AddConvergenceCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
 #endif

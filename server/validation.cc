@@ -26,9 +26,19 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
                                                      uint32_t max_n) {
   if (Status s = ValidatePointCount(n, max_n); !s.ok()) return s;
   if (directions_deg.empty() || directions_deg.size() > 2) {
+    // The service's canonical spaces are one and two directions (46 and 4141
+    // keys). Sets for 3 to 8 arbitrary directions are not cached: they have
+    // no small canonical space to precompute (three whole-degree directions
+    // alone make about 2.5e5 orbits under the same group), so they are
+    // refused here and made locally (README, "Any number of directions").
+    std::string hint;
+    if (directions_deg.size() > 2) {
+      hint = "; sets for up to 8 directions are made locally: alignset optimize --dir A --dir B "
+             "--dir C ...";
+    }
     return Status::InvalidArgument(
         "give one or two directions (degrees; 0 and 90 are always included), got " +
-        std::to_string(directions_deg.size()));
+        std::to_string(directions_deg.size()) + hint);
   }
   for (size_t i = 0; i < directions_deg.size(); ++i) {
     if (!std::isfinite(directions_deg[i])) {

@@ -1,5 +1,6 @@
 #include "core/analysis/convex_polygon.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace alignset {
@@ -91,6 +92,49 @@ Polygon RegularPolygon(Vec2 centre, double radius, int k, double rotation_deg) {
     const double t = DegToRad(rotation_deg) + 2.0 * kPi * i / k;
     p.push_back({centre.x + radius * std::cos(t), centre.y + radius * std::sin(t)});
   }
+  return p;
+}
+
+Polygon PolygonWithEdgeNormals(std::vector<double> normals_deg, double size) {
+  for (double& d : normals_deg) d = ReduceDirection(d);
+  std::sort(normals_deg.begin(), normals_deg.end());
+  for (size_t i = 1; i < normals_deg.size(); ++i) {
+    if (normals_deg[i] - normals_deg[i - 1] < 1e-9) return {};
+  }
+  if (!normals_deg.empty() && normals_deg.front() + 180.0 - normals_deg.back() < 1e-9) return {};
+  std::vector<double> outward;
+  for (size_t i = 0; i < normals_deg.size(); ++i) {
+    outward.push_back(normals_deg[i] + (i % 2 == 1 ? 180.0 : 0.0));
+  }
+  std::sort(outward.begin(), outward.end());
+  const size_t k = outward.size();
+  if (k < 3) return {};
+  for (size_t i = 0; i < k; ++i) {
+    const double next = i + 1 < k ? outward[i + 1] : outward[0] + 360.0;
+    const double gap = next - outward[i];
+    if (!(gap > 1e-9 && gap < 180.0 - 1e-9)) return {};
+  }
+  // Tangent lines n_i.x = 1 of the unit circle; consecutive ones meet at a
+  // vertex (Cramer's rule), counter-clockwise as the normals turn.
+  Polygon p;
+  for (size_t i = 0; i < k; ++i) {
+    // Not UnitVector: that reduces to a line's direction, and these are rays.
+    const double ta = DegToRad(outward[i]), tb = DegToRad(outward[(i + 1) % k]);
+    const Vec2 a = {std::cos(ta), std::sin(ta)};
+    const Vec2 b = {std::cos(tb), std::sin(tb)};
+    const double det = a.x * b.y - a.y * b.x;
+    p.push_back({(b.y - a.y) / det, (a.x - b.x) / det});
+  }
+  double lo_x = p[0].x, hi_x = p[0].x, lo_y = p[0].y, hi_y = p[0].y;
+  for (const Vec2& v : p) {
+    lo_x = std::min(lo_x, v.x);
+    hi_x = std::max(hi_x, v.x);
+    lo_y = std::min(lo_y, v.y);
+    hi_y = std::max(hi_y, v.y);
+  }
+  const double scale = size / std::max(hi_x - lo_x, hi_y - lo_y);
+  const Vec2 mid = {0.5 * (lo_x + hi_x), 0.5 * (lo_y + hi_y)};
+  for (Vec2& v : p) v = {0.5 + (v.x - mid.x) * scale, 0.5 + (v.y - mid.y) * scale};
   return p;
 }
 

@@ -41,4 +41,14 @@ double IntegrateLinearSquared(const Polygon& polygon, const LinearFunction& h);
 // angle `rotation_deg`, counter-clockwise.
 Polygon RegularPolygon(Vec2 centre, double radius, int k, double rotation_deg);
 
+// A convex polygon with one edge per direction in `normals_deg` (edge
+// normals, modulo 180°; at least 3, pairwise distinct), circumscribed about a
+// circle and then scaled and centred so that its bounding box's longer side
+// is `size` and its box is centred at (1/2, 1/2). The directions are sorted
+// and every second one is flipped by 180° (d_i + 180° for odd i), so the
+// outward normals go round the circle; an odd count of evenly spread
+// directions gives the regular polygon. Empty when the normals leave a gap of
+// 180° or more (no bounded polygon has them).
+Polygon PolygonWithEdgeNormals(std::vector<double> normals_deg, double size);
+
 }  // namespace alignset

@@ -166,8 +166,12 @@ std::unique_ptr<PiecewiseLinearIntegrand> StepEdge(double normal_deg, double off
   std::vector<PiecewiseLinearIntegrand::Piece> pieces;
   Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
   if (!p.empty()) pieces.push_back({std::move(p), {1.0, {0.0, 0.0}}});
-  return std::make_unique<PiecewiseLinearIntegrand>("step " + Degrees(normal_deg),
-                                                    std::move(pieces));
+  // The offset is part of the name when there is one, so that a table of
+  // several parallel edges tells them apart.
+  std::ostringstream name;
+  name << "step " << Degrees(normal_deg);
+  if (offset != 0.0) name << " off " << offset;
+  return std::make_unique<PiecewiseLinearIntegrand>(name.str(), std::move(pieces));
 }
 
 std::unique_ptr<PiecewiseLinearIntegrand> SmoothedStep(double normal_deg, double width,
@@ -186,6 +190,7 @@ std::unique_ptr<PiecewiseLinearIntegrand> SmoothedStep(double normal_deg, double
   }
   std::ostringstream name;
   name << "smoothed step " << Degrees(normal_deg) << " w=" << width;
+  if (offset != 0.0) name << " off " << offset;
   return std::make_unique<PiecewiseLinearIntegrand>(name.str(), std::move(pieces));
 }
 
@@ -267,6 +272,18 @@ StatusOr<std::unique_ptr<Integrand>> MakeIntegrand(const std::string& spec) {
     }
     out = PolygonIndicator(std::to_string(k) + "-gon",
                            RegularPolygon({0.5, 0.5}, 0.35, k, arg(1, 0.0)));
+  } else if (kind == "edges") {
+    if (args.size() < 3 || args.size() > 16) {
+      return Status::InvalidArgument("integrand '" + spec +
+                                     "': expected edges:D1:D2:D3[:...], 3 to 16 edge normals");
+    }
+    Polygon polygon = PolygonWithEdgeNormals(args, 0.7);
+    if (polygon.empty()) {
+      return Status::InvalidArgument("integrand '" + spec +
+                                     "': the edge normals must be distinct modulo 180 and spread "
+                                     "so that no gap between outward normals reaches 180 degrees");
+    }
+    out = PolygonIndicator(std::to_string(args.size()) + "-direction polygon", std::move(polygon));
   } else if (kind == "gaussian") {
     if (Status s = arity(0, 1); !s.ok()) return s;
     if (!(arg(0, 0.15) > 0.0)) return Status::InvalidArgument("gaussian sigma must be > 0");
@@ -280,7 +297,7 @@ StatusOr<std::unique_ptr<Integrand>> MakeIntegrand(const std::string& spec) {
   } else {
     return Status::InvalidArgument("unknown integrand '" + kind +
                                    "' (expected step, smoothstep, disk, triangle, polygon, "
-                                   "gaussian, product or boundary)");
+                                   "edges, gaussian, product or boundary)");
   }
   return out;
 }

@@ -103,6 +103,8 @@ std::unique_ptr<PiecewiseLinearIntegrand> SquareBoundaryRamp();
 //   step:DEG[:OFFSET]            smoothstep:DEG[:WIDTH[:OFFSET]] (width 0.1)
 //   disk[:R[:CX:CY]] (r 0.3)     triangle      polygon:K[:ROT_DEG] (radius 0.35)
 //   gaussian[:SIGMA] (0.15)      product       boundary
+//   edges:D1:D2:D3[:...]         a polygon with those edge normals (degrees,
+//                                3 to 16, PolygonWithEdgeNormals, size 0.7)
 StatusOr<std::unique_ptr<Integrand>> MakeIntegrand(const std::string& spec);
 
 // The integrand family the optimized sets are judged on (issue: low-frequency

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "core/optimize/axis_stratification.h"
 #include "core/optimize/low_frequency_projection.h"
 #include "core/sampling/owen_sobol.h"
+#include "core/spectral/direction_budget.h"
 #include "core/optimize/sliced_wasserstein.h"
 
 namespace alignset {
@@ -63,7 +65,28 @@ void AdamStep(const AdamState& from, const OptimizerOptions& o, double lr, AdamS
   }
 }
 
+std::string DegreesText(double deg) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", deg);
+  return text;
+}
+
 }  // namespace
+
+Status CheckDistinctDirections(const std::vector<double>& arbitrary) {
+  const std::vector<double> all = AnisotropyDirections(arbitrary);
+  for (size_t i = 0; i < all.size(); ++i) {
+    for (size_t j = 0; j < i; ++j) {
+      const double gap = std::fabs(all[i] - all[j]);
+      if (std::min(gap, 180.0 - gap) < 1e-9) {
+        return Status::InvalidArgument(
+            "duplicate direction " + DegreesText(all[i]) +
+            (j < 2 ? " (0 and 90 are always included)" : " (given twice, modulo 180)"));
+      }
+    }
+  }
+  return Status::Ok();
+}
 
 double DefaultLearningRate(const std::vector<Frequency>& k) {
   double vmax = 1.0;
@@ -115,12 +138,16 @@ Status ValidateProblem(const OptimizationProblem& p) {
                                    std::to_string(kMinPoints) + ", " +
                                    std::to_string(kMaxPoints) + "]");
   }
-  if (p.directions.empty() || p.directions.size() > 2) {
-    return Status::InvalidArgument("expected one or two arbitrary directions, got " +
+  if (p.directions.empty() || p.directions.size() > kMaxArbitraryDirections) {
+    return Status::InvalidArgument("expected 1 to " + std::to_string(kMaxArbitraryDirections) +
+                                   " arbitrary directions, got " +
                                    std::to_string(p.directions.size()));
   }
   for (double d : p.directions) {
     if (!std::isfinite(d)) return Status::InvalidArgument("direction must be a finite angle");
+  }
+  if (p.directions.size() > 2) {
+    if (Status s = CheckDistinctDirections(p.directions); !s.ok()) return s;
   }
   if (p.start) {
     if (p.start->size() != p.n) {
@@ -281,6 +308,10 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
   const OptimizationProblem& problem = s.problem;
   if (!s.started) {
     s.result.frequency_params = problem.frequency_params.value_or(DefaultFrequencyParams(problem.n));
+    if (!problem.frequency_params && problem.directions.size() > 2) {
+      s.result.frequency_params = FrequencyParamsForDirections(
+          problem.n, static_cast<int>(problem.directions.size()));
+    }
     const std::vector<double> dirs = AnisotropyDirections(problem.directions);
     s.k = BuildFrequencySet(s.result.frequency_params, dirs);
     s.result.frequency_count = s.k.size();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/optimize/spectrum_weights.h"
+#include "core/spectral/direction_budget.h"
 #include "core/spectral/frequency_set.h"
 #include "core/util/point_set.h"
 #include "core/spectral/spectral_engine.h"
@@ -21,13 +22,16 @@ namespace alignset {
 inline constexpr uint32_t kMinPoints = 16;
 inline constexpr uint32_t kMaxPoints = 1u << 20;
 
-// What to make: N points whose spectrum is dark along 0°, 90° and the one or
-// two arbitrary directions (degrees, spectral convention: the edge normal).
+// What to make: N points whose spectrum is dark along 0°, 90° and the 1 to
+// kMaxArbitraryDirections (8) arbitrary directions (degrees, spectral
+// convention: the edge normal). One or two are the service's canonical
+// spaces; more are made locally only (README, "Any number of directions").
 struct OptimizationProblem {
   uint32_t n = 0;
   std::vector<double> directions;
   uint64_t seed = 1;
-  // Unset: DefaultFrequencyParams(n).
+  // Unset: DefaultFrequencyParams(n) for one or two directions,
+  // FrequencyParamsForDirections(n, k) for more (direction_budget.h).
   std::optional<FrequencyParams> frequency_params;
   // Unset: Owen-scrambled Sobol from `seed`. Set: continue from these n
   // points (in [0,1)^2).
@@ -180,8 +184,11 @@ struct OptimizationResult {
   StopReason stop_reason = StopReason::kMaxIterations;
 };
 
-// Checks a problem at the boundary: N in [kMinPoints, kMaxPoints], one or two
-// finite directions, valid frequency parameters.
+// Checks a problem at the boundary: N in [kMinPoints, kMaxPoints], 1 to
+// kMaxArbitraryDirections finite directions (with three or more, all of them
+// and the axes distinct modulo 180°), valid frequency parameters. One or two
+// directions may repeat each other or an axis: the service's two-direction
+// space has its repeated pairs (30°, 30°) as keys of their own.
 Status ValidateProblem(const OptimizationProblem& problem);
 Status ValidateOptions(const OptimizerOptions& options);
 
@@ -231,6 +238,10 @@ class OptimizerRun {
   explicit OptimizerRun(std::unique_ptr<State> state);
   std::unique_ptr<State> s_;
 };
+
+// INVALID_ARGUMENT naming the first direction that repeats another or an
+// axis (modulo 180°).
+Status CheckDistinctDirections(const std::vector<double>& arbitrary);
 
 // L_Spec, L_SW and the total of a given set (no gradient), for reporting.
 LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,

@@ -26,7 +26,7 @@ TEST(Cli, BadInputGetsOneLineErrorAndNonZeroExit) {
       "optimize --n 64 --dir thirty --out ",
       "optimize --n 64 --dir nan --out ",
       "optimize --n 64 --dir inf --out ",
-      "optimize --n 64 --dir 1 --dir 2 --dir 3 --out ",
+      "optimize --n 64 --dir 1 --dir 2 --dir 3 --dir 4 --dir 5 --dir 6 --dir 7 --dir 8 --dir 9 --out ",
       "optimize --n 64 --out ",
       "optimize --n 64 --dir 30 --engine warp --out ",
       "optimize --n 64 --dir 30 --bogus 1 --out ",

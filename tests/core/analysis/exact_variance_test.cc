@@ -55,7 +55,9 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(Pair{"gaussian", "owen-sobol", 256}, Pair{"product", "random", 256},
                     Pair{"product", "owen-sobol", 256}, Pair{"smoothstep:30", "jittered", 256},
                     Pair{"disk", "owen-sobol", 256}, Pair{"triangle", "random", 256},
-                    Pair{"step:30", "pmj02bn", 256}, Pair{"boundary", "random", 256}),
+                    Pair{"step:30", "pmj02bn", 256}, Pair{"boundary", "random", 256},
+                    Pair{"edges:0:90:45", "cmj", 256},
+                    Pair{"edges:0:90:18:36:54:72:108:126:144:162", "owen-sobol", 256}),
     [](const testing::TestParamInfo<Pair>& info) {
       std::string s = info.param.integrand + "_" + info.param.sampler;
       for (char& c : s) {

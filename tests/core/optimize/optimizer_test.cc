@@ -27,7 +27,8 @@ TEST(Optimizer, RejectsInvalidProblems) {
   EXPECT_EQ(Optimize(Problem(kMaxPoints + 1, {30}), o, engine).status().code(),
             Status::Code::kInvalidArgument);
   EXPECT_FALSE(Optimize(Problem(64, {}), o, engine).ok());
-  EXPECT_FALSE(Optimize(Problem(64, {1, 2, 3}), o, engine).ok());
+  EXPECT_FALSE(Optimize(Problem(64, {1, 2, 3, 4, 5, 6, 7, 8, 9}), o, engine).ok());  // 1 to 8
+  EXPECT_FALSE(Optimize(Problem(64, {1, 2, 181}), o, engine).ok());  // a duplicate
   EXPECT_FALSE(Optimize(Problem(64, {NAN}), o, engine).ok());
   EXPECT_FALSE(Optimize(Problem(64, {INFINITY}), o, engine).ok());
   OptimizerOptions bad;
