@@ -65,6 +65,12 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   SetInfo i;
   i.requested_deg.assign(md.requested_deg().begin(), md.requested_deg().end());
   i.served_deg.assign(md.served_deg().begin(), md.served_deg().end());
+  i.served_exact_deg.assign(md.served_exact_deg().begin(), md.served_exact_deg().end());
+  // A server from before the quarter-degree grid sends only whole degrees.
+  if (i.served_exact_deg.empty()) i.served_exact_deg.assign(i.served_deg.begin(), i.served_deg.end());
+  i.phi1_exact = md.key().phi1_exact_deg();
+  if (i.phi1_exact == 0.0) i.phi1_exact = md.key().phi1_deg();
+  i.steps_per_degree = md.key().steps_per_degree() == 0 ? 1 : static_cast<int>(md.key().steps_per_degree());
   i.n = n;
   i.direction_count = static_cast<int>(md.key().direction_count());
   i.phi1 = md.key().phi1_deg();
@@ -99,6 +105,7 @@ ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
   m.requests_watch = r.requests_watch();
   m.requests_precompute = r.requests_precompute();
   m.requests_samples = r.requests_samples();
+  m.requests_estimate = r.requests_estimate();
   m.requests_invalid = r.requests_invalid();
   m.cache_hits_memory = r.cache_hits_memory();
   m.cache_hits_db = r.cache_hits_db();
@@ -213,11 +220,23 @@ StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOpt
 }
 
 namespace {
-v1::AlignedSetRequest MakeRequest(uint32_t n, const std::vector<double>& dirs) {
+v1::AlignedSetRequest MakeRequest(uint32_t n, const std::vector<double>& dirs, uint32_t steps) {
   v1::AlignedSetRequest req;
   req.set_n(n);
   for (double d : dirs) req.add_directions_deg(d);
+  req.set_steps_per_degree(steps);
   return req;
+}
+
+EstimatedDirection ToDirection(const v1::EstimatedDirection& d) {
+  EstimatedDirection e;
+  e.found = d.status() == v1::DIRECTION_FOUND;
+  e.theta_deg = d.theta_deg();
+  e.kappa = d.kappa();
+  e.confidence = d.confidence();
+  e.contrast = d.contrast();
+  e.reason = d.reason();
+  return e;
 }
 
 StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
@@ -231,21 +250,22 @@ StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
 }
 }  // namespace
 
-StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs) {
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs,
+                                                  uint32_t steps_per_degree) {
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, true);
   v1::AlignedSetResponse resp;
-  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs), &resp);
+  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs, steps_per_degree), &resp);
   if (!s.ok()) return impl_->Fail(s);
   return FromResponse(&resp);
 }
 
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     uint32_t n, const std::vector<double>& dirs,
-    const std::function<void(const WatchUpdate&)>& on_update) {
+    const std::function<void(const WatchUpdate&)>& on_update, uint32_t steps_per_degree) {
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false);
-  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs));
+  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs, steps_per_degree));
   v1::WatchEvent ev;
   std::optional<StatusOr<AlignedSet>> result;
   while (reader->Read(&ev)) {
@@ -274,6 +294,51 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
   return std::move(*result);
 }
 
+namespace {
+
+StatusOr<DirectionReply> CallEstimate(ServiceClient::Impl* impl,
+                                      const v1::EstimateDirectionRequest& req) {
+  grpc::ClientContext ctx;
+  impl->Prepare(&ctx, true);
+  v1::EstimateDirectionResponse resp;
+  grpc::Status s = impl->stub->EstimateDirection(&ctx, req, &resp);
+  if (!s.ok()) return impl->Fail(s);
+  DirectionReply r;
+  r.first = ToDirection(resp.first());
+  r.has_second = resp.has_second();
+  if (r.has_second) r.second = ToDirection(resp.second());
+  r.max_radius = resp.max_radius();
+  return r;
+}
+
+}  // namespace
+
+StatusOr<DirectionReply> ServiceClient::EstimateDirection(int width, int height,
+                                                          const std::vector<double>& values,
+                                                          bool second) {
+  if (width < 0 || height < 0) return Status::InvalidArgument("negative grid size");
+  v1::EstimateDirectionRequest req;
+  req.mutable_grid()->set_width(static_cast<uint32_t>(width));
+  req.mutable_grid()->set_height(static_cast<uint32_t>(height));
+  req.mutable_grid()->mutable_values()->Add(values.begin(), values.end());
+  req.set_second(second);
+  return CallEstimate(impl_.get(), req);
+}
+
+StatusOr<DirectionReply> ServiceClient::EstimateDirection(const PointSet& points,
+                                                          const std::vector<double>& values,
+                                                          bool second) {
+  v1::EstimateDirectionRequest req;
+  v1::ScatteredSamples* s = req.mutable_samples();
+  for (const Point2& p : points) {
+    s->add_x(p.x);
+    s->add_y(p.y);
+  }
+  s->mutable_f()->Add(values.begin(), values.end());
+  req.set_second(second);
+  return CallEstimate(impl_.get(), req);
+}
+
 StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
     const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update) {
   v1::PrecomputeRequest req;
@@ -292,6 +357,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   }
   req.set_shard_index(spec.shard_index);
   req.set_shard_count(spec.shard_count);
+  req.set_steps_per_degree(spec.steps_per_degree);
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false);
   auto reader = impl_->stub->Precompute(&ctx, req);

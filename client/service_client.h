@@ -36,7 +36,10 @@ struct ConnectOptions {
 // Everything the server says about a served set (see alignset.proto).
 struct SetInfo {
   std::vector<double> requested_deg;
-  std::vector<int> served_deg;
+  std::vector<int> served_deg;          // nearest whole degrees
+  std::vector<double> served_exact_deg; // exactly (30.25 on the quarter-degree grid)
+  double phi1_exact = 0.0;              // the key's first angle exactly
+  int steps_per_degree = 1;             // the key space key_index counts in
   uint32_t n = 0;
   int direction_count = 1;
   int phi1 = 0;
@@ -82,8 +85,11 @@ struct WatchUpdate {
 
 struct PrecomputeSpec {
   std::vector<uint32_t> n;
-  int space = 1;  // 1: the 46 one-direction keys, 2: the 4141 pairs, 0: `keys`
+  int space = 1;  // 1: the one-direction keys, 2: the 4141 pairs, 0: `keys`
   std::vector<std::vector<int>> keys;
+  // Space 1's grid: 1 (or 0), the 46 whole-degree keys; 4, the 181
+  // quarter-degree keys (also the grid of explicit one-direction keys).
+  uint32_t steps_per_degree = 1;
   uint32_t shard_index = 0;
   uint32_t shard_count = 1;
 };
@@ -98,6 +104,7 @@ struct PrecomputeUpdate {
 
 struct ServiceMetrics {
   uint64_t requests_get = 0, requests_watch = 0, requests_precompute = 0, requests_samples = 0,
+           requests_estimate = 0,
            requests_invalid = 0;
   uint64_t cache_hits_memory = 0, cache_hits_db = 0, cache_misses = 0, corrupt_rows = 0;
   uint64_t optimizations_started = 0, optimizations_completed = 0, optimizations_cancelled = 0,
@@ -111,6 +118,23 @@ struct CacheInfo {
   std::string database_path;
   std::string profile_hint;
   ServiceMetrics metrics;
+};
+
+// One direction estimated by EstimateDirection.
+struct EstimatedDirection {
+  bool found = false;      // false: no dominant direction (see reason)
+  double theta_deg = 0.0;  // [0, 180), spectral convention; 0 unless found
+  double kappa = 0.0;
+  double confidence = 0.0;
+  double contrast = 0.0;
+  std::string reason;
+};
+
+struct DirectionReply {
+  EstimatedDirection first;
+  bool has_second = false;
+  EstimatedDirection second;
+  double max_radius = 0.0;
 };
 
 struct CachedKey {
@@ -131,10 +155,21 @@ class ServiceClient {
   static StatusOr<std::unique_ptr<ServiceClient>> Connect(const ConnectOptions& options);
   ~ServiceClient();
 
-  StatusOr<AlignedSet> GetAlignedSet(uint32_t n, const std::vector<double>& directions_deg);
+  // steps_per_degree: the grid one direction is served on (0: the
+  // server's default, 1: whole degrees, 4: quarter degrees).
+  StatusOr<AlignedSet> GetAlignedSet(uint32_t n, const std::vector<double>& directions_deg,
+                                     uint32_t steps_per_degree = 0);
   // Streams queue position and progress to `on_update`, then returns the set.
   StatusOr<AlignedSet> WatchAlignedSet(uint32_t n, const std::vector<double>& directions_deg,
-                                       const std::function<void(const WatchUpdate&)>& on_update);
+                                       const std::function<void(const WatchUpdate&)>& on_update,
+                                       uint32_t steps_per_degree = 0);
+  // The principal direction(s) of a grid of values (width x height,
+  // values[j * width + i] = f((i + 1/2) / width, (j + 1/2) / height)) or of
+  // scattered samples f(points[j]) = values[j].
+  StatusOr<DirectionReply> EstimateDirection(int width, int height,
+                                             const std::vector<double>& values, bool second);
+  StatusOr<DirectionReply> EstimateDirection(const PointSet& points,
+                                             const std::vector<double>& values, bool second);
   // Streams progress until the request's items are all resolved.
   StatusOr<PrecomputeUpdate> Precompute(const PrecomputeSpec& spec,
                                         const std::function<void(const PrecomputeUpdate&)>& on_update);

@@ -71,20 +71,23 @@ std::vector<double> GridStrengths(const GridPatch& patch, double taper, double* 
 
 }  // namespace
 
-Status ValidateGridPatch(const GridPatch& patch) {
-  if (patch.width < kMinPatchSide || patch.height < kMinPatchSide) {
+Status ValidateGridSize(int64_t width, int64_t height) {
+  if (width < kMinPatchSide || height < kMinPatchSide) {
     return Status::InvalidArgument("a grid patch needs at least " + std::to_string(kMinPatchSide) +
                                    " x " + std::to_string(kMinPatchSide) + " cells, got " +
-                                   std::to_string(patch.width) + " x " +
-                                   std::to_string(patch.height));
+                                   std::to_string(width) + " x " + std::to_string(height));
   }
-  if (patch.width > kMaxPatchSide || patch.height > kMaxPatchSide ||
-      static_cast<int64_t>(patch.width) * patch.height > kMaxPatchCells) {
+  if (width > kMaxPatchSide || height > kMaxPatchSide || width * height > kMaxPatchCells) {
     return Status::InvalidArgument(
         "a grid patch may have at most " + std::to_string(kMaxPatchSide) + " cells a side and " +
-        std::to_string(kMaxPatchCells) + " in all, got " + std::to_string(patch.width) + " x " +
-        std::to_string(patch.height));
+        std::to_string(kMaxPatchCells) + " in all, got " + std::to_string(width) + " x " +
+        std::to_string(height));
   }
+  return Status::Ok();
+}
+
+Status ValidateGridPatch(const GridPatch& patch) {
+  if (Status s = ValidateGridSize(patch.width, patch.height); !s.ok()) return s;
   const size_t want = static_cast<size_t>(patch.width) * patch.height;
   if (patch.values.size() != want) {
     return Status::InvalidArgument("a " + std::to_string(patch.width) + " x " +

@@ -38,6 +38,8 @@ inline constexpr int64_t kMaxPatchSamples = int64_t{1} << 20;
 // INVALID_ARGUMENT with a one-line reason for a grid of the wrong size,
 // values that do not match width x height, or a non-finite value.
 Status ValidateGridPatch(const GridPatch& patch);
+// The size checks alone (before any value is copied).
+Status ValidateGridSize(int64_t width, int64_t height);
 // INVALID_ARGUMENT for no samples, too many, points and values of different
 // counts, non-finite numbers, or a point outside [0,1]^2.
 Status ValidateSampledPatch(const SampledPatch& patch);
