@@ -166,7 +166,14 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   StartServer(kFast);  // default --angle-step 0.25
   auto client = Client();
   // A whole-degree set stored by a whole-degree request ...
-  auto whole = client->GetAlignedSet(64, {30.0}, 1);
+  auto get = [&](std::vector<double> dirs, uint32_t steps) {
+    cli::SetRequest r;
+    r.n = 64;
+    r.directions_deg = std::move(dirs);
+    r.steps_per_degree = steps;
+    return client->GetAlignedSet(r);
+  };
+  auto whole = get({30.0}, 1);
   ASSERT_TRUE(whole.ok()) << whole.status().message();
   EXPECT_FALSE(whole->info.from_cache);
   EXPECT_EQ(whole->info.steps_per_degree, 1);
@@ -192,7 +199,7 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   EXPECT_FALSE(fine->info.swapped);
   EXPECT_NE(fine->raw, whole->raw);
   // Asked on whole degrees, 149.8 is 150: the whole-degree row again.
-  auto coarse = client->GetAlignedSet(64, {149.8}, 1);
+  auto coarse = get({149.8}, 1);
   ASSERT_TRUE(coarse.ok());
   EXPECT_TRUE(coarse->info.from_cache);
   EXPECT_EQ(coarse->info.served_exact_deg, std::vector<double>{150.0});
@@ -201,7 +208,7 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   ASSERT_TRUE(two.ok());
   EXPECT_EQ(two->info.served_exact_deg, (std::vector<double>{20, 101}));
   // A grid that does not exist.
-  auto bad = client->GetAlignedSet(64, {30.0}, 3);
+  auto bad = get({30.0}, 3);
   EXPECT_EQ(bad.status().code(), Status::Code::kInvalidArgument);
 
   // Precompute on the quarter grid: shard 0 of 60 is indices 0, 60, 120, 180
