@@ -4,10 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <cstdlib>
+#include <cstdio>
+#include <algorithm>
 #include <limits>
 
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "client/service_client.h"
+#include "tests/client/npy_test_file.h"
 #include "tests/e2e/server_process.h"
 
 namespace alignset::e2e {
@@ -240,6 +245,73 @@ TEST_F(DirectionE2eTest, WholeDegreeServerRoundsToWholeDegrees) {
   ASSERT_TRUE(fine.ok()) << fine.status().message();
   EXPECT_EQ(fine->info.served_exact_deg, std::vector<double>{30.0});
   EXPECT_EQ(fine->info.steps_per_degree, 1);
+}
+
+// `alignset get --from-patch`: the server estimates the direction, and the
+// set for it is served in the same command; a patch without a direction is a
+// failure that says so, a bad patch a usage error, and the server serves on.
+TEST_F(DirectionE2eTest, CliGetFromPatchEstimatesThenServesThatDirection) {
+  StartServer(kFast);
+  const std::string cli = std::string(ALIGNSET_CLI_PATH) + " ";
+  const std::string server = " --server " + server_->address() + " ";
+  const std::string patch = dir_.path() + "/edge.npy";
+  test_support::WriteNpy(patch, {64, 64}, StepGrid(64, 64, 33.3));
+  const std::string out = dir_.path() + "/set.txt";
+  auto got = RunCommand(cli + "get" + server + "--n 64 --from-patch " + patch + " --out " + out);
+  ASSERT_EQ(got.exit_code, 0) << got.output;
+  const size_t at = got.output.find("estimated theta ");
+  ASSERT_NE(at, std::string::npos) << got.output;
+  const double theta = std::atof(got.output.c_str() + at + 16);
+  EXPECT_LT(AngleError(theta, 33.3), 1.0) << got.output;
+  // Served on the server's default quarter-degree grid: the estimate's
+  // nearest quarter, exactly what --dir with the estimate serves.
+  char served[64];
+  std::snprintf(served, sizeof(served), "directions     0, 90, %g ", std::round(theta * 4) / 4);
+  EXPECT_NE(got.output.find(served), std::string::npos) << got.output;
+  char dir[32];
+  std::snprintf(dir, sizeof(dir), "%.4f", theta);
+  auto same = RunCommand(cli + "get" + server + "--n 64 --dir " + dir + " --out " + out + "2");
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("from cache     yes"), std::string::npos) << same.output;
+  EXPECT_NE(same.output.find(served), std::string::npos) << same.output;
+
+  // Two crossing edges with --two: a two-direction set.
+  std::vector<double> cross = StepGrid(64, 64, 20.0), other = StepGrid(64, 64, 110.0);
+  for (size_t k = 0; k < cross.size(); ++k) cross[k] += 0.5 * other[k];
+  const std::string cross_path = dir_.path() + "/cross.npy";
+  test_support::WriteNpy(cross_path, {64, 64}, cross);
+  auto two = RunCommand(cli + "get" + server + "--n 64 --two --from-patch " + cross_path +
+                        " --out " + out);
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_NE(two.output.find("directions     0, 90, 20,110 "), std::string::npos) << two.output;
+
+  // No dominant direction: status 1, one line, no set written.
+  const std::string flat = dir_.path() + "/flat.npy";
+  test_support::WriteNpy(flat, {16, 16}, std::vector<double>(256, 0.25));
+  auto none = RunCommand(cli + "get" + server + "--n 64 --from-patch " + flat + " --out " +
+                         dir_.path() + "/none.txt");
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
+  EXPECT_NE(none.output.find("no dominant direction"), std::string::npos) << none.output;
+  EXPECT_FALSE(std::ifstream(dir_.path() + "/none.txt").good());
+
+  // A bad patch is a usage error; --dir and --from-patch do not go together.
+  const std::string bad = dir_.path() + "/bad.npy";
+  std::vector<double> values = StepGrid(16, 16, 10.0);
+  values[3] = std::numeric_limits<double>::quiet_NaN();
+  test_support::WriteNpy(bad, {16, 16}, values);
+  auto refused = RunCommand(cli + "get" + server + "--n 64 --from-patch " + bad + " --out " + out);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("not finite"), std::string::npos) << refused.output;
+  auto both = RunCommand(cli + "get" + server + "--n 64 --dir 3 --from-patch " + patch + " --out " + out);
+  EXPECT_EQ(both.exit_code, 2) << both.output;
+  auto neither = RunCommand(cli + "get" + server + "--n 64 --out " + out);
+  EXPECT_EQ(neither.exit_code, 2) << neither.output;
+  EXPECT_NE(neither.output.find("--from-patch"), std::string::npos) << neither.output;
+
+  auto alive = Client()->Healthy();
+  ASSERT_TRUE(alive.ok());
+  EXPECT_TRUE(*alive);
 }
 
 }  // namespace
