@@ -35,6 +35,8 @@ struct GetOptions {
   // the server's EstimateDirection (--two: also the second direction).
   std::string from_patch;
   bool two = false;
+  // One direction's grid: empty, the server's (--angle-step); "1" or "0.25".
+  std::string angle_step;
   std::string out;
   bool quiet = false;
   int64_t realization = 0;
@@ -56,13 +58,18 @@ std::string Comment(const SetInfo& i) {
   return comment;
 }
 
+// SetRequest::steps_per_degree: 0 leaves the grid to the server.
+uint32_t StepsPerDegree(const GetOptions& o) {
+  return o.angle_step.empty() ? 0 : o.angle_step == "0.25" ? 4 : 1;
+}
+
 // One set through the streaming call, which shows queue position and
 // optimization progress (a cache hit arrives as its only message).
 StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
   Progress progress("optimize");
   bool shown = false;
   const SetRequest request{static_cast<uint32_t>(o.n), o.dirs,
-                           static_cast<uint32_t>(o.realization)};
+                           static_cast<uint32_t>(o.realization), StepsPerDegree(o)};
   auto set = client.WatchAlignedSet(request, [&](const WatchUpdate& u) {
     if (o.quiet) return;
     shown = true;
@@ -83,7 +90,8 @@ StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
 StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOptions& o) {
   std::vector<SetRequest> items;
   for (int64_t i = 0; i < *o.sets; ++i) {
-    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i)});
+    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i),
+                     StepsPerDegree(o)});
   }
   if (!o.quiet) {
     std::fprintf(stderr, "alignset get: %lld realizations (%lld..%lld) in one call\n",
@@ -245,6 +253,9 @@ void AddGetCommand(CLI::App& app) {
   c->add_option("-m,--sets", o->sets,
                 "several realizations, R .. R+M-1, in one call: '#'-separated text, (m, N, 2) .npy")
       ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  c->add_option("--angle-step", o->angle_step,
+                "grid one direction is served on: 0.25 or 1 degree (default: the server's)")
+      ->check(CLI::IsMember({"1", "0.25"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

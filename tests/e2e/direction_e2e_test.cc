@@ -275,6 +275,15 @@ TEST_F(DirectionE2eTest, CliGetFromPatchEstimatesThenServesThatDirection) {
   EXPECT_NE(same.output.find("from cache     yes"), std::string::npos) << same.output;
   EXPECT_NE(same.output.find(served), std::string::npos) << same.output;
 
+  // --angle-step 1 asks for the whole-degree grid instead.
+  auto whole = RunCommand(cli + "get" + server + "--n 64 --angle-step 1 --from-patch " + patch +
+                          " --out " + out);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  std::snprintf(served, sizeof(served), "directions     0, 90, %g ", std::round(theta));
+  EXPECT_NE(whole.output.find(served), std::string::npos) << whole.output;
+  auto step = RunCommand(cli + "precompute" + server + "--n 64 --angle-step 0.3");
+  EXPECT_EQ(step.exit_code, 2) << step.output;
+
   // Two crossing edges with --two: a two-direction set.
   std::vector<double> cross = StepGrid(64, 64, 20.0), other = StepGrid(64, 64, 110.0);
   for (size_t k = 0; k < cross.size(); ++k) cross[k] += 0.5 * other[k];
