@@ -16,6 +16,8 @@ void AddVarianceCommand(CLI::App& app);
 // (convergence); PNGs through scripts/plot_analysis.py (client/plot_script.h).
 void AddAnalyzeCommand(CLI::App& app);
 void AddConvergenceCommand(CLI::App& app);
+// The principal direction of an integrand patch (core/analysis).
+void AddDirectionCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 void AddCacheCommand(CLI::App& app);

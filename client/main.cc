@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   AddVarianceCommand(app);
   AddAnalyzeCommand(app);
   AddConvergenceCommand(app);
+  AddDirectionCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
 #endif

@@ -50,6 +50,7 @@ const std::map<std::string, Meta>& Fields() {
       {"rejected_waiting_limit", {Kind::kCounter, "calls refused at --max-waiting-calls"}},
       {"database_integrity_errors",
        {Kind::kGauge, "problems PRAGMA quick_check found in the cache file (0: none)"}},
+      {"requests_estimate", {Kind::kCounter, "EstimateDirection calls"}},
   };
   return fields;
 }

@@ -474,8 +474,8 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     }
     OptimizationProblem problem;
     problem.n = key.n;
-    problem.directions = {static_cast<double>(key.dirs.phi1)};
-    if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
+    problem.directions = {Phi1Degrees(key.dirs)};
+    if (key.dirs.count == 2) problem.directions.push_back(Phi2Degrees(key.dirs));
     problem.seed = RealizationSeed(options_.seed, key.realization);
     auto run = OptimizerRun::Create(problem, options_.optimizer);
     if (!run.ok()) {
