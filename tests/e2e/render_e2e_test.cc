@@ -1,0 +1,117 @@
+// The renderer's aligned samplers end to end: sets fetched from the real
+// alignset-server on loopback through the client library, then a few pixels
+// of both scenes rendered with them and checked against the exact reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench/render/direction.h"
+#include "bench/render/pixel_samplers.h"
+#include "bench/render/renderer.h"
+#include "bench/render/scene.h"
+#include "bench/render/set_fetch.h"
+#include "client/service_client.h"
+#include "tests/e2e/server_process.h"
+
+namespace alignset::render {
+namespace {
+
+using e2e::ServerProcess;
+using e2e::TempDir;
+
+TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
+  TempDir dir;
+  ServerProcess server(dir.path(), {"--max-iterations", "200", "--workers", "2",
+                                    "--threads-per-worker", "1"});
+  ASSERT_EQ(server.error(), "");
+  cli::ConnectOptions o;
+  o.address = server.address();
+  auto client = cli::ServiceClient::Connect(o);
+  ASSERT_TRUE(client.ok()) << client.status().message();
+
+  constexpr uint32_t kN = 16;
+  for (const char* name : {"antialias", "shadow"}) {
+    const Scene scene = *MakeScene(name, 128, 128, 1);
+    const std::vector<PixelDirection> exact = GeometryDirections(scene);
+    const std::vector<PixelDirection> estimated =
+        EstimateDirections(scene, *MakePlaceholderEstimator(8), 1, 2);
+    // A few edge pixels of each kind and a smooth one, spread over the image.
+    const std::vector<PixelClass> classes = scene.Classes();
+    std::vector<size_t> pixels;
+    int one = 0, two = 0, smooth = 0;
+    for (size_t k = 0; k < classes.size(); ++k) {
+      const size_t i = (k * 7919 + 101) % classes.size();
+      const bool edge = classes[i] == PixelClass::kEdge;
+      if (edge && exact[i].kind == PixelDirection::Kind::kOne && one < 3) pixels.push_back(i), ++one;
+      if (edge && exact[i].kind == PixelDirection::Kind::kTwo && two < 2) pixels.push_back(i), ++two;
+      if (classes[i] == PixelClass::kSmooth && smooth < 1) pixels.push_back(i), ++smooth;
+    }
+    ASSERT_EQ(pixels.size(), 6u) << name;
+    // Only the pairs these pixels need: the test stays seconds long.
+    AlignedPolicy policy;
+    std::vector<PixelDirection> mine_exact(exact.size()), mine_est(estimated.size());
+    for (size_t i : pixels) {
+      mine_exact[i] = exact[i];
+      mine_est[i] = estimated[i];
+    }
+    std::set<std::pair<int, int>> pairs = NeededPairs(mine_exact, policy);
+    for (const auto& p : NeededPairs(mine_est, policy)) pairs.insert(p);
+    ASSERT_FALSE(pairs.empty()) << name;  // the two-direction pixels need them
+    int updates = 0;
+    auto table = FetchAlignedSets(**client, kN, pairs,
+                                  [&](const std::string&, double, double, const std::string&) { ++updates; });
+    ASSERT_TRUE(table.ok()) << table.status().message();
+    EXPECT_GT(updates, 180);
+    ASSERT_EQ(table->one.size(), 180u);
+    for (int deg = 0; deg < 180; ++deg) {
+      ASSERT_NE(table->One(deg), nullptr);
+      ASSERT_EQ(table->One(deg)->size(), kN);
+    }
+    // The table holds what the server serves for that direction.
+    auto direct = (*client)->GetAlignedSet(kN, {123.0});
+    ASSERT_TRUE(direct.ok());
+    EXPECT_EQ(*table->One(123), direct->points);
+    for (const auto& [a, b] : pairs) ASSERT_NE(table->Two(a, b), nullptr) << a << "," << b;
+
+    for (const char* sampler : {"aligned", "aligned-exact"}) {
+      for (AlignedPolicy::None none : {AlignedPolicy::None::kOwenSobol, AlignedPolicy::None::kAxisSet}) {
+        SamplerConfig c{sampler, kN};
+        c.estimated = &mine_est;
+        c.exact = &mine_exact;
+        c.sets = &*table;
+        c.policy.none = none;
+        auto s = MakePixelSampler(c);
+        ASSERT_TRUE(s.ok()) << s.status().message();
+        for (size_t i : pixels) {
+          constexpr int kReps = 24;
+          std::vector<double> e;
+          for (int r = 1; r <= kReps; ++r) {
+            e.push_back(RenderPixel(scene, **s, int(i % 128), int(i / 128), r));
+          }
+          double mean = 0.0, ss = 0.0;
+          for (double v : e) mean += v / kReps;
+          for (double v : e) ss += (v - mean) * (v - mean);
+          const double sd = std::sqrt(ss / (kReps - 1));
+          ASSERT_TRUE(std::isfinite(mean)) << sampler << " pixel " << i;
+          EXPECT_NEAR(mean, scene.Pixel(i).Exact(), 5.0 * sd / std::sqrt(double(kReps)) + 1e-12)
+              << name << " " << sampler << " pixel " << i;
+          if (classes[i] == PixelClass::kEdge) EXPECT_GT(sd, 0.0) << name << " " << sampler;
+        }
+      }
+    }
+  }
+}
+
+TEST(RenderE2e, AServerThatIsGoneIsAClearError) {
+  cli::ConnectOptions o;
+  o.address = "127.0.0.1:1";  // nothing listens there
+  o.timeout_seconds = 5;
+  auto client = cli::ServiceClient::Connect(o);
+  ASSERT_TRUE(client.ok());
+  auto table = FetchAlignedSets(**client, 16, {}, nullptr);
+  ASSERT_FALSE(table.ok());
+  EXPECT_NE(table.status().message().find("UNAVAILABLE"), std::string::npos) << table.status().message();
+}
+
+}  // namespace
+}  // namespace alignset::render
