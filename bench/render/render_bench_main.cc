@@ -6,11 +6,14 @@
 //   render_bench --server ADDR --out DIR [--size 128] [--n 16,32,...,4096]
 //                [--image-n 256,1024,4096] [--scenes antialias,shadow]
 //                [--samplers a,b,...] [--threads 2] [--seed 1] [--prepass 8]
+//                [--line-rates 1|0]
 //
 // Writes DIR/render_errors.csv (one row per scene, sampler and N: MSE over
 // pixel subsets, the blur criterion, seconds), DIR/tile_blur.csv (the
 // screen-space tile's blur criterion on test integrands), DIR/directions.txt
-// (the estimator against the geometry), and .npy images under DIR/images.
+// (the estimator against the geometry), DIR/line_rates.csv (line and segment
+// samples on clean straight edges, against seeds/004), and .npy images under
+// DIR/images.
 #include <sys/stat.h>
 
 #include <chrono>
@@ -32,7 +35,9 @@
 #include "client/progress.h"
 #include "client/service_client.h"
 #include "core/sampling/screen_space_rank1.h"
+#include "core/sampling/owen_sobol.h"
 #include "core/util/angles.h"
+#include "core/util/hash.h"
 
 namespace alignset::render {
 namespace {
@@ -155,12 +160,59 @@ void DirectionReport(std::ofstream& out, const SceneData& d, const DirectionEsti
   }
 }
 
+// seeds/004's predictions on clean straight edges: 256 pixels, each a step
+// with a random normal and offset; variance of points (Owen-Sobol) and of
+// line and segment samples across, along and at random to the edge.
+void LineRates(const std::string& path, const std::vector<uint32_t>& ns) {
+  Pcg32 rng(404);
+  struct Edge {
+    PixelIntegrand f;
+    double normal;
+  };
+  std::vector<Edge> edges;
+  for (int k = 0; k < 256; ++k) {
+    const double deg = 180.0 * rng.NextDouble();
+    const V2 nn = {std::cos(DegToRad(deg)), std::sin(DegToRad(deg))};
+    const V2 c = {0.25 + 0.5 * rng.NextDouble(), 0.25 + 0.5 * rng.NextDouble()};
+    const Polygon half = ClipHalfPlane({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, nn, Dot(nn, c));
+    edges.push_back({PixelIntegrand(Linear{0.2, 0, 0}, {Fragment{half, Linear{0.9, 0, 0}, {}}}), deg});
+  }
+  std::ofstream out(path);
+  out << "n,estimator,mse\n";
+  constexpr int kReps = 8;
+  for (uint32_t n : ns) {
+    std::map<std::string, double> mse;
+    for (size_t k = 0; k < edges.size(); ++k) {
+      const Edge& e = edges[k];
+      for (int r = 0; r < kReps; ++r) {
+        const uint64_t h = HashCombine(HashCombine(n, k), r);
+        const double random_deg = 180.0 * HashShift(Mix64(h)).x;
+        auto add = [&](const std::string& name, double v) {
+          mse[name] += (v - e.f.Exact()) * (v - e.f.Exact()) / (kReps * edges.size());
+        };
+        double pts = 0.0;
+        for (const Point2& p : OwenScrambledSobol(n, h)) pts += e.f.Eval({p.x, p.y});
+        add("points-owen-sobol", pts / n);
+        add("line-normal", LineEstimate(e.f, n, e.normal, h));
+        add("line-edge", LineEstimate(e.f, n, e.normal + 90.0, h));
+        add("line-random", LineEstimate(e.f, n, random_deg, h));
+        add("segment-normal", SegmentEstimate(e.f, n, e.normal, 0.5, h));
+        add("segment-edge", SegmentEstimate(e.f, n, e.normal + 90.0, 0.5, h));
+        add("segment-random", SegmentEstimate(e.f, n, random_deg, 0.5, h));
+      }
+    }
+    for (const auto& [name, v] : mse) out << n << "," << name << "," << v << "\n";
+    out.flush();
+    std::fprintf(stderr, "line rates N=%u done\n", n);
+  }
+}
+
 int Main(int argc, char** argv) {
   std::map<std::string, std::string> a = {
       {"server", ""}, {"out", "bench/results/render"}, {"size", "128"},
       {"n", "16,32,64,128,256,512,1024,2048,4096"}, {"image-n", "256,1024,4096"},
       {"scenes", "antialias,shadow"}, {"samplers", ""}, {"threads", "2"}, {"seed", "1"},
-      {"prepass", "8"}};
+      {"prepass", "8"}, {"line-rates", "1"}};
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0 || i + 1 >= argc || !a.count(k.substr(2))) {
@@ -196,6 +248,8 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "render_bench: %s\n", client.status().message().c_str());
     return 1;
   }
+
+  if (a["line-rates"] == "1") LineRates(out + "/line_rates.csv", ns);
 
   const std::unique_ptr<DirectionEstimator> estimator =
       MakePlaceholderEstimator(std::atoi(a["prepass"].c_str()));
