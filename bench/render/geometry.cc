@@ -3,6 +3,10 @@
 #include <algorithm>
 
 namespace alignset::render {
+namespace {
+constexpr double kSameVertex2 = 1e-24;  // squared distance below which two vertices are one
+inline double DistanceSquared(V2 a, V2 b) { return Dot(a - b, a - b); }
+}  // namespace
 
 double Area(const Polygon& p) {
   if (p.size() < 3) return 0.0;
@@ -41,8 +45,19 @@ Polygon ClipHalfPlane(const Polygon& p, V2 n, double d) {
       out.push_back(a + t * (b - a));
     }
   }
-  if (out.size() < 3) out.clear();
-  return out;
+  // Drop vertices that coincide with their predecessor to rounding: an edge
+  // of length ~1e-16 has an arbitrary direction, and Contains and
+  // ClipSegment, which trust every edge's direction, would misjudge points
+  // far from it (seen at the centre of a fan of thin triangles).
+  Polygon clean;
+  clean.reserve(out.size());
+  for (const V2& q : out) {
+    if (!clean.empty() && DistanceSquared(clean.back(), q) < kSameVertex2) continue;
+    clean.push_back(q);
+  }
+  while (clean.size() > 1 && DistanceSquared(clean.front(), clean.back()) < kSameVertex2) clean.pop_back();
+  if (clean.size() < 3) clean.clear();
+  return clean;
 }
 
 namespace {
@@ -91,7 +106,9 @@ bool Contains(const Polygon& p, V2 q) {
   const size_t n = p.size();
   if (n < 3) return false;
   for (size_t i = 0; i < n; ++i) {
-    if (Cross(p[(i + 1) % n] - p[i], q - p[i]) < 0.0) return false;
+    const V2 e = p[(i + 1) % n] - p[i];
+    if (Dot(e, e) < kSameVertex2) continue;  // no direction to trust
+    if (Cross(e, q - p[i]) < 0.0) return false;
   }
   return true;
 }
@@ -105,6 +122,7 @@ bool ClipSegment(const Polygon& p, V2 a, V2 b, double* t0, double* t1) {
     V2 normal;
     double d;
     EdgeHalfPlane(p[i], p[(i + 1) % n], &normal, &d);
+    if (Dot(normal, normal) < kSameVertex2) continue;  // no direction to trust
     const double num = d - Dot(normal, a);
     const double den = Dot(normal, dir);
     if (den == 0.0) {

@@ -214,6 +214,8 @@ def main():
             if n < 256:
                 continue
             a, b = val(s, "aligned-exact", n, "mse_edge_two"), val(s, "aligned-exact-1dir", n, "mse_edge_two")
+            if not math.isfinite(b):
+                continue  # above render_bench's --two-max-n: no two-direction sets
             two.append([s, str(n), fmt(a), fmt(b), "%.2f" % (b / a) if a > 0 else "—"])
     md.append(table(["scene", "N", "two-direction sets", "one-direction set", "one / two"], two))
     md.append("")
