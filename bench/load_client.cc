@@ -24,8 +24,8 @@
 #include <thread>
 #include <vector>
 
-#include "client/args.h"
-#include "client/service_client.h"
+#include "client/cli_app.h"
+#include <alignset/client.h>
 #include "core/align/canonical.h"
 #include "core/sampling/owen_sobol.h"
 #include "storage/set_cache.h"
@@ -33,7 +33,6 @@
 namespace {
 
 using alignset::Status;
-using alignset::cli::Args;
 using Clock = std::chrono::steady_clock;
 
 int Fail(const Status& s) {
@@ -41,39 +40,32 @@ int Fail(const Status& s) {
   return 1;
 }
 
-std::vector<int64_t> IntList(const std::string& text) {
-  std::vector<int64_t> out;
-  size_t pos = 0;
-  while (pos <= text.size()) {
-    const size_t comma = text.find(',', pos);
-    out.push_back(std::stoll(text.substr(pos, comma - pos)));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  return out;
-}
+struct LoadOptions {
+  std::string db;
+  std::string server = alignset::kDefaultServerAddress;
+  std::vector<int64_t> n = {4096, 65536};
+  std::vector<int64_t> clients = {1, 8, 64};
+  double dir = 30.0;
+  int64_t max_iterations = 3000;
+  int64_t seed = 1;
+  double seconds = 3.0;
+  double warmup = 0.5;
+};
 
-int Populate(const Args& args) {
-  auto db = args.String("db", "");
-  auto dir = args.Double("dir", 30.0);
-  auto iters = args.Int("max-iterations", 3000, 1, 100000000);
-  auto seed = args.Int("seed", 1, 0, INT64_MAX);
-  if (!db.ok() || db->empty() || !dir.ok() || !iters.ok() || !seed.ok()) {
-    return Fail(Status::InvalidArgument("populate needs --db PATH (and valid --dir/--max-iterations/--seed)"));
-  }
-  auto cache = alignset::storage::SetCache::Open(*db);
+int Populate(const LoadOptions& o) {
+  auto cache = alignset::storage::SetCache::Open(o.db);
   if (!cache.ok()) return Fail(cache.status());
-  auto canon = alignset::Canonicalize({*dir});
+  auto canon = alignset::Canonicalize({o.dir});
   if (!canon.ok()) return Fail(canon.status());
   alignset::OptimizerOptions options;
-  options.max_iterations = static_cast<int>(*iters);
-  for (int64_t n : IntList(args.String("n", "4096,65536").value())) {
+  options.max_iterations = static_cast<int>(o.max_iterations);
+  for (int64_t n : o.n) {
     alignset::storage::SetRecord r;
     r.key.n = static_cast<uint32_t>(n);
     r.key.dirs = canon->key;
     r.key.profile = alignset::storage::ProfileId(alignset::DefaultFrequencyParams(r.key.n), options,
-                                                 static_cast<uint64_t>(*seed));
-    r.points = alignset::OwenScrambledSobol(r.key.n, static_cast<uint64_t>(*seed));
+                                                 static_cast<uint64_t>(o.seed));
+    r.points = alignset::OwenScrambledSobol(r.key.n, static_cast<uint64_t>(o.seed));
     r.engine = "load-bench-populate";
     r.created_unix = static_cast<int64_t>(std::time(nullptr));
     if (Status s = (*cache)->Put(r); !s.ok()) return Fail(s);
@@ -98,10 +90,10 @@ Row Measure(const std::string& server, uint32_t n, double dir, int clients, doub
   std::vector<std::thread> threads;
   for (int c = 0; c < clients; ++c) {
     threads.emplace_back([&, c] {
-      alignset::cli::ConnectOptions o;
+      alignset::ConnectOptions o;
       o.address = server;
       o.separate_connection = true;
-      auto client = alignset::cli::ServiceClient::Connect(o);
+      auto client = alignset::ServiceClient::Connect(o);
       if (!client.ok()) {
         ++errors;
         return;
@@ -135,20 +127,13 @@ Row Measure(const std::string& server, uint32_t n, double dir, int clients, doub
              pct(0.99), all.empty() ? 0.0 : all.back()};
 }
 
-int Run(const Args& args) {
-  auto server = args.String("server", alignset::cli::kDefaultServerAddress);
-  auto dir = args.Double("dir", 30.0);
-  auto seconds = args.Double("seconds", 3.0);
-  auto warmup = args.Double("warmup", 0.5);
-  if (!server.ok() || !dir.ok() || !seconds.ok() || !warmup.ok()) {
-    return Fail(Status::InvalidArgument("bad --server/--dir/--seconds/--warmup"));
-  }
+int Run(const LoadOptions& o) {
   std::printf("%8s %8s %10s %8s %10s %10s %10s %12s\n", "N", "clients", "requests", "errors",
               "p50_ms", "p99_ms", "max_ms", "requests/s");
-  for (int64_t n : IntList(args.String("n", "4096,65536").value())) {
-    for (int64_t c : IntList(args.String("clients", "1,8,64").value())) {
-      const Row r = Measure(*server, static_cast<uint32_t>(n), *dir, static_cast<int>(c), *warmup,
-                            *seconds);
+  for (int64_t n : o.n) {
+    for (int64_t c : o.clients) {
+      const Row r = Measure(o.server, static_cast<uint32_t>(n), o.dir, static_cast<int>(c),
+                            o.warmup, o.seconds);
       std::printf("%8lld %8lld %10lld %8lld %10.3f %10.3f %10.3f %12.1f\n", (long long)r.n,
                   (long long)r.clients, (long long)r.requests, (long long)r.errors, r.p50_ms,
                   r.p99_ms, r.max_ms, r.requests / r.seconds);
@@ -161,21 +146,34 @@ int Run(const Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: alignset_load_client populate|run [options] (see bench/load_client.cc)\n");
-    return 2;
-  }
-  const std::string mode = argv[1];
   // Keep 1 MiB response buffers in the heap: with glibc's default they are
   // mmap'ed and unmapped per request, and the page faults cost as much as
   // the copies (halves the 65536-point p50 here).
   mallopt(M_MMAP_THRESHOLD, 64 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
-  auto args = Args::Parse(argc - 2, argv + 2,
-                          {"db", "n", "dir", "max-iterations", "seed", "server", "clients",
-                           "seconds", "warmup"});
-  if (!args.ok()) return Fail(args.status());
-  if (mode == "populate") return Populate(*args);
-  if (mode == "run") return Run(*args);
-  return Fail(Status::InvalidArgument("unknown mode '" + mode + "' (populate or run)"));
+  using alignset::cli::FiniteIn;
+  using alignset::cli::IntegerIn;
+  LoadOptions o;
+  CLI::App app("Load generator for alignset-server's cache-hit path (bench/load_client.cc)",
+               "alignset_load_client");
+  app.require_subcommand(1);
+  CLI::App* populate = app.add_subcommand("populate", "store Owen-Sobol sets under the server's keys");
+  populate->add_option("--db", o.db, "the cache file")->required();
+  populate->add_option("--max-iterations", o.max_iterations, "the server's --max-iterations")
+      ->check(IntegerIn(1, 100000000));
+  populate->add_option("--seed", o.seed, "the server's --seed")->check(IntegerIn(0, INT64_MAX));
+  CLI::App* run = app.add_subcommand("run", "measure latency and throughput of cache hits");
+  run->add_option("--server", o.server, "server address");
+  run->add_option("--clients", o.clients, "client counts")->delimiter(',')->check(IntegerIn(1, 4096));
+  run->add_option("--seconds", o.seconds, "measured seconds per row")->check(FiniteIn(0.01, 3600));
+  run->add_option("--warmup", o.warmup, "unmeasured seconds first")->check(FiniteIn(0, 3600));
+  for (CLI::App* c : {populate, run}) {
+    c->add_option("--n", o.n, "point counts")->delimiter(',')->check(IntegerIn(16, 1 << 20));
+    c->add_option("--dir", o.dir, "direction (degrees)")->check(alignset::cli::FiniteNumber());
+  }
+  int rc = 0;
+  populate->callback([&] { rc = Populate(o); });
+  run->callback([&] { rc = Run(o); });
+  CLI11_PARSE(app, argc, argv);
+  return rc;
 }

@@ -4,10 +4,11 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "storage/set_cache.h"
 
@@ -16,110 +17,104 @@ namespace {
 
 using storage::SetCache;
 
-// Exit codes: 0 success, 1 the command ran but found damaged sets, 2 error.
+struct CacheOptions {
+  std::string db;
+  std::string out;
+  std::vector<std::string> files;
+  std::optional<int64_t> n;
+  std::optional<std::string> profile;
+};
+
+// Local work: a bad argument or a missing file is a usage error (2), any
+// other failure (SQLite, the file system) a failure (1). Damaged sets found
+// and skipped are a failure too, reported after the work is done.
 int Fail(const std::string& sub, const Status& s) {
-  return ReportError("cache " + sub, s, kExitUsage);
+  const bool usage = s.code() == Status::Code::kInvalidArgument || s.code() == Status::Code::kNotFound;
+  return ReportError("cache " + sub, s, usage ? kExitUsage : kExitFailure);
 }
 
-void PrintUsage() {
-  std::fprintf(stderr,
-               "usage: alignset cache <subcommand> [options]\n"
-               "  export --db PATH --out FILE     consistent copy of the cache (FILE must not exist)\n"
-               "  import --db PATH FILE...        merge shard files into the cache\n"
-               "  merge  --out FILE SHARD...      merge shard files into a new file\n"
-               "  verify --db PATH                re-read every set and check its checksum\n"
-               "  list   --db PATH [--n N] [--profile ID]\n"
-               "                                  one line per cached set, then totals\n"
-               "exit status: 0 ok, 1 damaged sets found (and skipped), 2 error\n");
-}
-
-StatusOr<std::unique_ptr<SetCache>> OpenDb(const Args& args, bool read_only) {
-  auto db = args.String("db", "");
-  if (!db.ok()) return db.status();
-  if (db->empty()) return Status::InvalidArgument("--db is required");
-  if (read_only && !std::filesystem::exists(*db)) return Status::NotFound(*db + " does not exist");
+StatusOr<std::unique_ptr<SetCache>> OpenDb(const std::string& db, bool read_only) {
+  if (read_only && !std::filesystem::exists(db)) return Status::NotFound(db + " does not exist");
   SetCache::Options options;
   options.read_only = read_only;
-  return SetCache::Open(*db, options);
+  return SetCache::Open(db, options);
 }
 
-// Merges every file into `cache`; returns the exit status.
-int MergeAll(const std::string& sub, SetCache& cache, const std::vector<std::string>& files) {
+// Merges every file into `cache`, one line each; returns how many damaged
+// sets were skipped.
+StatusOr<int64_t> MergeAll(SetCache& cache, const std::vector<std::string>& files) {
   int64_t corrupt = 0;
   for (const std::string& f : files) {
-    if (!std::filesystem::exists(f)) return Fail(sub, Status::NotFound(f + " does not exist"));
     auto r = cache.MergeFrom(f);
-    if (!r.ok()) return Fail(sub, Status(r.status()));
+    if (!r.ok()) return Status(r.status());
     std::printf("%s: added %lld, already present %lld, damaged (skipped) %lld\n", f.c_str(),
                 static_cast<long long>(r->added), static_cast<long long>(r->skipped_existing),
                 static_cast<long long>(r->skipped_corrupt));
     corrupt += r->skipped_corrupt;
   }
-  return corrupt > 0 ? 1 : 0;
+  return corrupt;
 }
 
-int RunExport(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"db", "out"});
-  if (!args.ok()) return Fail("export", args.status());
-  if (!args->positionals().empty()) {
-    return Fail("export", Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
+Status CheckInputs(const std::vector<std::string>& files) {
+  for (const std::string& f : files) {
+    if (!std::filesystem::exists(f)) return Status::NotFound(f + " does not exist");
   }
-  auto out = args->String("out", "");
-  if (!out.ok() || out->empty()) return Fail("export", Status::InvalidArgument("--out is required"));
-  auto cache = OpenDb(*args, true);
+  return Status::Ok();
+}
+
+int RunExport(const CacheOptions& o) {
+  if (std::filesystem::exists(o.out)) {
+    return Fail("export", Status::InvalidArgument(o.out + " already exists"));
+  }
+  auto cache = OpenDb(o.db, true);
   if (!cache.ok()) return Fail("export", cache.status());
-  Status s = (*cache)->ExportTo(*out);
+  Status s = (*cache)->ExportTo(o.out);
   if (!s.ok()) return Fail("export", s);
   auto stats = (*cache)->Stats();
   if (!stats.ok()) return Fail("export", stats.status());
-  std::printf("exported %lld sets to %s\n", static_cast<long long>(stats->sets), out->c_str());
-  return 0;
+  std::printf("exported %lld sets to %s\n", static_cast<long long>(stats->sets), o.out.c_str());
+  return kExitOk;
 }
 
-int RunImport(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"db"});
-  if (!args.ok()) return Fail("import", args.status());
-  if (args->positionals().empty()) return Fail("import", Status::InvalidArgument("name at least one FILE"));
-  auto cache = OpenDb(*args, false);
+int RunImport(const CacheOptions& o) {
+  if (Status s = CheckInputs(o.files); !s.ok()) return Fail("import", s);
+  auto cache = OpenDb(o.db, false);
   if (!cache.ok()) return Fail("import", cache.status());
-  return MergeAll("import", **cache, args->positionals());
+  auto corrupt = MergeAll(**cache, o.files);
+  if (!corrupt.ok()) return Fail("import", corrupt.status());
+  return *corrupt > 0 ? kExitFailure : kExitOk;
 }
 
-int RunMerge(int argc, char** argv) {
+int RunMerge(const CacheOptions& o) {
   namespace fs = std::filesystem;
-  auto args = Args::Parse(argc, argv, {"out"});
-  if (!args.ok()) return Fail("merge", args.status());
-  auto out = args->String("out", "");
-  if (!out.ok() || out->empty()) return Fail("merge", Status::InvalidArgument("--out is required"));
-  if (args->positionals().empty()) return Fail("merge", Status::InvalidArgument("name at least one SHARD"));
-  if (fs::exists(*out)) {
-    return Fail("merge", Status::InvalidArgument(*out + " already exists (use 'cache import' to add to it)"));
+  if (fs::exists(o.out)) {
+    return Fail("merge", Status::InvalidArgument(o.out + " already exists (use 'cache import' to add to it)"));
   }
+  if (Status s = CheckInputs(o.files); !s.ok()) return Fail("merge", s);
   // Built under a temporary name and renamed when complete, so a failed or
   // interrupted merge never leaves a partial FILE behind.
-  const std::string tmp = *out + ".partial";
+  const std::string tmp = o.out + ".partial";
   std::error_code ec;
   for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(tmp + suffix, ec);
-  int rc = 0;
+  StatusOr<int64_t> corrupt = Status::Internal("not run");
   {
     auto cache = SetCache::Open(tmp);
     if (!cache.ok()) return Fail("merge", cache.status());
-    rc = MergeAll("merge", **cache, args->positionals());
+    corrupt = MergeAll(**cache, o.files);
   }  // closing the last connection checkpoints and removes the WAL
-  if (rc == 2) {
+  if (!corrupt.ok()) {
     for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(tmp + suffix, ec);
-    return rc;
+    return Fail("merge", corrupt.status());
   }
-  fs::rename(tmp, *out, ec);
+  fs::rename(tmp, o.out, ec);
   if (ec) return Fail("merge", Status::Internal("rename " + tmp + ": " + ec.message()));
-  std::printf("wrote %s\n", out->c_str());
-  return rc;
+  std::printf("wrote %s\n", o.out.c_str());
+  // Damaged sets were skipped: the file is complete but lacks them.
+  return *corrupt > 0 ? kExitFailure : kExitOk;
 }
 
-int RunVerify(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"db"});
-  if (!args.ok()) return Fail("verify", args.status());
-  auto cache = OpenDb(*args, true);
+int RunVerify(const CacheOptions& o) {
+  auto cache = OpenDb(o.db, true);
   if (!cache.ok()) return Fail("verify", cache.status());
   auto report = (*cache)->Verify();
   if (!report.ok()) return Fail("verify", report.status());
@@ -128,7 +123,7 @@ int RunVerify(int argc, char** argv) {
   }
   std::printf("checked %lld sets, %zu damaged\n", static_cast<long long>(report->checked),
               report->corrupt.size());
-  return report->corrupt.empty() ? 0 : 1;
+  return report->corrupt.empty() ? kExitOk : kExitFailure;
 }
 
 std::string FormatTime(int64_t unix_seconds) {
@@ -140,26 +135,14 @@ std::string FormatTime(int64_t unix_seconds) {
   return buf;
 }
 
-int RunList(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"db", "n", "profile"});
-  if (!args.ok()) return Fail("list", args.status());
+int RunList(const CacheOptions& o) {
   std::optional<uint32_t> n;
-  if (args->Has("n")) {
-    auto v = args->Int("n", 0, 1, UINT32_MAX);
-    if (!v.ok()) return Fail("list", v.status());
-    n = static_cast<uint32_t>(*v);
-  }
-  std::optional<std::string> profile;
-  if (args->Has("profile")) {
-    auto v = args->String("profile", "");
-    if (!v.ok()) return Fail("list", v.status());
-    profile = *v;
-  }
-  auto cache = OpenDb(*args, true);
+  if (o.n) n = static_cast<uint32_t>(*o.n);
+  auto cache = OpenDb(o.db, true);
   if (!cache.ok()) return Fail("list", cache.status());
-  auto rows = (*cache)->ListSummaries(n, profile);
+  auto rows = (*cache)->ListSummaries(n, o.profile);
   if (!rows.ok()) return Fail("list", rows.status());
-  std::printf("%8s %-8s %-16s %12s %12s %12s %7s %9s %-8s %-20s %3s %10s\n", "n", "dirs", "profile",
+  std::printf("%8s %-11s %-16s %12s %12s %12s %7s %9s %-8s %-20s %3s %10s\n", "n", "dirs [r]", "profile",
               "loss", "spectrum", "sw", "iters", "seconds", "engine", "created", "alg", "bytes");
   for (const storage::SetSummary& s : *rows) {
     std::string dirs = std::to_string(s.key.dirs.phi1);
@@ -167,7 +150,8 @@ int RunList(int argc, char** argv) {
       dirs += ',';
       dirs += std::to_string(s.key.dirs.phi2);
     }
-    std::printf("%8u %-8s %-16s %12.5g %12.5g %12.5g %7d %9.2f %-8s %-20s %3d %10lld\n", s.key.n,
+    if (s.key.realization > 0) dirs += " r" + std::to_string(s.key.realization);
+    std::printf("%8u %-11s %-16s %12.5g %12.5g %12.5g %7d %9.2f %-8s %-20s %3d %10lld\n", s.key.n,
                 dirs.c_str(), s.key.profile.c_str(), s.loss.total, s.loss.spectrum, s.loss.sw,
                 s.iterations, s.optimize_seconds, s.engine.c_str(), FormatTime(s.created_unix).c_str(),
                 s.algorithm_version, static_cast<long long>(s.bytes));
@@ -181,26 +165,48 @@ int RunList(int argc, char** argv) {
   return 0;
 }
 
+// One cache subcommand: its options and the callback that runs it.
+CLI::App* AddSub(CLI::App* cache, const std::string& name, const std::string& description,
+                 int (*run)(const CacheOptions&), std::shared_ptr<CacheOptions>* options) {
+  auto o = std::make_shared<CacheOptions>();
+  CLI::App* c = AddCommand(*cache, name, description);
+  c->callback([o, run] { Finish(run(*o)); });
+  *options = o;
+  return c;
+}
+
 }  // namespace
 
-int RunCache(int argc, char** argv) {
-  if (argc < 1) {
-    PrintUsage();
-    return 2;
-  }
-  const std::string sub = argv[0];
-  if (sub == "export") return RunExport(argc - 1, argv + 1);
-  if (sub == "import") return RunImport(argc - 1, argv + 1);
-  if (sub == "merge") return RunMerge(argc - 1, argv + 1);
-  if (sub == "verify") return RunVerify(argc - 1, argv + 1);
-  if (sub == "list") return RunList(argc - 1, argv + 1);
-  if (sub == "--help" || sub == "-h" || sub == "help") {
-    PrintUsage();
-    return 0;
-  }
-  ReportError("cache", Status::InvalidArgument("unknown subcommand '" + sub + "'"), kExitUsage);
-  PrintUsage();
-  return kExitUsage;
+void AddCacheCommand(CLI::App& app) {
+  CLI::App* cache = AddCommand(app, "cache",
+                               "maintain SQLite cache files (export, import, merge, verify, list);\n"
+                               "works on the files directly, no server needed");
+  cache->require_subcommand(1);
+  cache->footer(
+      "Exit status: 0 success; 1 failure (damaged sets found and skipped, or a SQLite or file\n"
+      "system error); 2 usage (a wrong command line, a named file that is missing, an output\n"
+      "that already exists).");
+  std::shared_ptr<CacheOptions> o;
+  CLI::App* c = AddSub(cache, "export", "a consistent copy of the cache (FILE must not exist)",
+                       RunExport, &o);
+  c->add_option("--db", o->db, "the cache file")->required();
+  c->add_option("-o,--out", o->out, "the copy")->required();
+
+  c = AddSub(cache, "import", "merge shard files into the cache", RunImport, &o);
+  c->add_option("--db", o->db, "the cache file (created if missing)")->required();
+  c->add_option("FILE", o->files, "shard files")->required();
+
+  c = AddSub(cache, "merge", "merge shard files into a new file", RunMerge, &o);
+  c->add_option("-o,--out", o->out, "the new file (must not exist)")->required();
+  c->add_option("SHARD", o->files, "shard files")->required();
+
+  c = AddSub(cache, "verify", "re-read every set and check its checksum", RunVerify, &o);
+  c->add_option("--db", o->db, "the cache file")->required();
+
+  c = AddSub(cache, "list", "one line per cached set, then totals", RunList, &o);
+  c->add_option("--db", o->db, "the cache file")->required();
+  c->add_option("-n,--n", o->n, "only this N")->check(IntegerIn(1, UINT32_MAX));
+  c->add_option("--profile", o->profile, "only this profile id");
 }
 
 }  // namespace alignset::cli

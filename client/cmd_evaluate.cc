@@ -1,8 +1,8 @@
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "core/spectral/direct_engine.h"
@@ -13,7 +13,7 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("evaluate", s, kExitUsage); }
+int Usage(const Status& s) { return ReportError("evaluate", s, kExitUsage); }
 
 // Owen-Sobol varies with its scramble; averaging a few scrambles makes the
 // baseline a property of the sampler rather than of one seed.
@@ -47,44 +47,36 @@ Figures Measure(const std::vector<PointSet>& sets, double normal, int edges, int
   return out;
 }
 
-}  // namespace
+struct EvaluateOptions {
+  std::string file;
+  double normal = 0.0;
+  int64_t shifts = 4096;
+  int64_t seed = 7;
+  int64_t edges = 8;
+  std::vector<double> extra;
+  int64_t threads = 0;
+};
 
-int RunEvaluate(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"normal", "shifts", "seed", "dir", "threads", "edges"});
-  if (!args.ok()) return Fail(args.status());
-  if (args->positionals().size() != 1) {
-    return Fail(Status::InvalidArgument("expected exactly one point-set file"));
-  }
-  if (!args->Has("normal")) return Fail(Status::InvalidArgument("--normal is required"));
-  auto normal = args->Double("normal", 0.0);
-  if (!normal.ok()) return Fail(normal.status());
-  auto shifts = args->Int("shifts", 4096, 1024, 1 << 24);
-  if (!shifts.ok()) return Fail(shifts.status());
-  auto seed = args->Int("seed", 7, 0, INT64_MAX);
-  if (!seed.ok()) return Fail(seed.status());
-  auto edges = args->Int("edges", 8, 1, 1024);
-  if (!edges.ok()) return Fail(edges.status());
-  auto extra = args->Doubles("dir");
-  if (!extra.ok()) return Fail(extra.status());
-  auto threads = args->Int("threads", 0, 0, 1024);
-  if (!threads.ok()) return Fail(threads.status());
-  auto points = ReadPointFile(args->positionals()[0]);
-  if (!points.ok()) return Fail(points.status());
+int RunEvaluate(const EvaluateOptions& o) {
+  auto points = ReadPointFile(o.file);
+  if (!points.ok()) return Usage(points.status());
   const uint32_t n = static_cast<uint32_t>(points->size());
 
-  std::vector<double> strips = {0.0, 90.0, *normal};
-  for (double d : *extra) strips.push_back(d);
+  std::vector<double> strips = {0.0, 90.0, o.normal};
+  for (double d : o.extra) strips.push_back(d);
   const FrequencyParams params = DefaultFrequencyParams(n);
-  DirectEngine engine(static_cast<int>(*threads));
+  DirectEngine engine(static_cast<int>(o.threads));
+  const int edges = static_cast<int>(o.edges), shifts = static_cast<int>(o.shifts);
+  const uint64_t seed = static_cast<uint64_t>(o.seed);
 
-  const Figures set = Measure({*points}, *normal, static_cast<int>(*edges), static_cast<int>(*shifts), *seed, params, strips, &engine);
+  const Figures set = Measure({*points}, o.normal, edges, shifts, seed, params, strips, &engine);
   std::vector<PointSet> sobol;
   for (int i = 0; i < kSobolScrambles; ++i) sobol.push_back(OwenScrambledSobol(n, 1000 + i));
-  const Figures base = Measure(sobol, *normal, static_cast<int>(*edges), static_cast<int>(*shifts), *seed, params, strips, &engine);
+  const Figures base = Measure(sobol, o.normal, edges, shifts, seed, params, strips, &engine);
 
-  std::printf("N %u, %lld parallel step edges with normal %.6g deg (offsets -1/4..1/4), "
-              "%lld CP shifts each\n",
-              n, static_cast<long long>(*edges), *normal, static_cast<long long>(*shifts));
+  std::printf("N %u, %d parallel step edges with normal %.6g deg (offsets -1/4..1/4), "
+              "%d CP shifts each\n",
+              n, edges, o.normal, shifts);
   std::printf("%-28s %14s %14s\n", "", "this set", "owen-sobol");
   std::printf("%-28s %14.4e %14.4e\n", "variance", set.variance, base.variance);
   std::printf("%-28s %14.2e %14.2e\n", "  (std. error)", set.std_error, base.std_error);
@@ -94,7 +86,36 @@ int RunEvaluate(int argc, char** argv) {
     std::printf("%-28s %14.4f %14.4f\n", label, set.strip_means[i], base.strip_means[i]);
   }
   std::printf("variance ratio (owen-sobol / this set): %.3f\n", base.variance / set.variance);
-  return 0;
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddEvaluateCommand(CLI::App& app) {
+  auto o = std::make_shared<EvaluateOptions>();
+  CLI::App* c = AddCommand(app, "evaluate",
+                           "CP-rotated variance on parallel step edges and strip periodograms,\n"
+                           "beside Owen-scrambled Sobol sets of the same N");
+  c->add_option("FILE", o->file, "the point set: UTK text, .npy, .csv; - stdin")->required();
+  c->add_option("--normal", o->normal, "edge normal in degrees (the spectral direction)")
+      ->required()
+      ->check(FiniteNumber());
+  c->add_option("--edges", o->edges, "parallel edges at offsets -1/4..1/4")
+      ->capture_default_str()
+      ->check(IntegerIn(1, 1024));
+  c->add_option("--shifts", o->shifts, "Cranley-Patterson shifts per edge")
+      ->capture_default_str()
+      ->check(IntegerIn(1024, 1 << 24));
+  c->add_option("-s,--seed", o->seed, "seed of the shifts")
+      ->capture_default_str()
+      ->check(IntegerIn(0, INT64_MAX));
+  c->add_option("--dir", o->extra, "another strip to report (degrees), repeatable")
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("--threads", o->threads, "threads of the spectral engine (0: all cores)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, 1024));
+  c->callback([o] { Finish(RunEvaluate(*o)); });
 }
 
 }  // namespace alignset::cli

@@ -1,16 +1,19 @@
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "client/progress.h"
-#include "client/service_flags.h"
+#include "client/service_options.h"
 
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("get", s, kExitService); }
+int Usage(const Status& s) { return ReportError("get", s, kExitUsage); }
+int Failure(const Status& s) { return ReportError("get", s, kExitFailure); }
 
 std::string Join(const std::vector<int>& v) {
   std::string s;
@@ -18,37 +21,39 @@ std::string Join(const std::vector<int>& v) {
   return s;
 }
 
-}  // namespace
+struct GetOptions {
+  int64_t n = 0;
+  std::vector<double> dirs;
+  std::string out;
+  bool quiet = false;
+  int64_t realization = 0;
+  // -m M: realizations r .. r + M - 1 in one batch call, as a multi-set file.
+  std::optional<int64_t> sets;
+  ServiceOptions service;
+};
 
-int RunGet(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, ServiceFlags({"n", "dir", "out"}), {"quiet"});
-  if (!args.ok()) return Fail(args.status());
-  if (!args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
-  }
-  if (!args->Has("n")) return Fail(Status::InvalidArgument("--n is required"));
-  if (!args->Has("out")) return Fail(Status::InvalidArgument("--out is required"));
-  // The server checks N against its own maximum; here only the type.
-  auto n = args->Int("n", 0, 0, UINT32_MAX);
-  if (!n.ok()) return Fail(n.status());
-  auto dirs = args->Doubles("dir");
-  if (!dirs.ok()) return Fail(dirs.status());
-  if (dirs->empty() || dirs->size() > 2) {
-    return Fail(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
-                                        std::to_string(dirs->size())));
-  }
-  auto out = args->String("out", "");
-  if (!out.ok()) return Fail(out.status());
-  auto client = ConnectFromArgs(*args);
-  if (!client.ok()) return Fail(client.status());
+// What a text file records about a served set, one '#' line or two.
+std::string Comment(const SetInfo& i) {
+  char comment[768];
+  std::snprintf(comment, sizeof(comment),
+                "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s "
+                "realization=%u\nswap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d "
+                "engine=%s seed=%llu algorithm_version=%d",
+                i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
+                i.inverted, i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
+                static_cast<unsigned long long>(i.seed), i.algorithm_version);
+  return comment;
+}
 
-  // The streaming call shows queue position and optimization progress; a
-  // cache hit arrives as its only message.
+// One set through the streaming call, which shows queue position and
+// optimization progress (a cache hit arrives as its only message).
+StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
   Progress progress("optimize");
   bool shown = false;
-  const bool quiet = args->Has("quiet");
-  auto set = (*client)->WatchAlignedSet(static_cast<uint32_t>(*n), *dirs, [&](const WatchUpdate& u) {
-    if (quiet) return;
+  const SetRequest request{static_cast<uint32_t>(o.n), o.dirs,
+                           static_cast<uint32_t>(o.realization)};
+  auto set = client.WatchAlignedSet(request, [&](const WatchUpdate& u) {
+    if (o.quiet) return;
     shown = true;
     if (u.queued) {
       progress.Update(0, 1, "queued at position " + std::to_string(u.queue_position));
@@ -58,34 +63,121 @@ int RunGet(int argc, char** argv) {
     std::snprintf(detail, sizeof(detail), "loss %.5g lr %.2g", u.loss, u.learning_rate);
     progress.Update(u.iteration, u.max_iterations, detail);
   });
-  if (!set.ok()) return Fail(set.status());
-  if (shown) progress.Finish("");
+  if (set.ok() && shown) progress.Finish("");
+  return set;
+}
 
-  const SetInfo& i = set->info;
-  char comment[768];
-  std::snprintf(comment, sizeof(comment),
-                "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s\n"
-                "swap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s "
-                "algorithm_version=%d",
-                i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.swapped, i.inverted,
-                i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
-                i.algorithm_version);
-  if (Status s = WritePointFile(*out, set->points, comment); !s.ok()) return Fail(s);
+// Several realizations in one batch call: the server optimizes the missing
+// ones in parallel.
+StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOptions& o) {
+  std::vector<SetRequest> items;
+  for (int64_t i = 0; i < *o.sets; ++i) {
+    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i)});
+  }
+  if (!o.quiet) {
+    std::fprintf(stderr, "alignset get: %lld realizations (%lld..%lld) in one call\n",
+                 static_cast<long long>(*o.sets), static_cast<long long>(o.realization),
+                 static_cast<long long>(o.realization + *o.sets - 1));
+  }
+  auto batch = client.GetAlignedSets(items);
+  if (!batch.ok()) return batch.status();
+  std::vector<AlignedSet> sets;
+  for (size_t i = 0; i < batch->size(); ++i) {
+    BatchItem& item = (*batch)[i];
+    if (!item.status.ok()) {
+      return Status(item.status.code() == Status::Code::kInvalidArgument
+                        ? Status::InvalidArgument("realization " + std::to_string(items[i].realization) +
+                                                  ": " + item.status.message())
+                        : Status::Unavailable("realization " + std::to_string(items[i].realization) +
+                                              ": " + item.status.message()));
+    }
+    sets.push_back(std::move(item.set));
+  }
+  return sets;
+}
 
-  std::printf("N              %u\n", i.n);
-  std::printf("directions     0, 90, %s (served; deg, spectral = edge normal)\n",
-              Join(i.served_deg).c_str());
-  std::printf("canonical key  %s (index %llu)\n", i.key_text.c_str(),
-              static_cast<unsigned long long>(i.key_index));
-  std::printf("alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
-              i.inverted ? "yes" : "no");
-  std::printf("loss           %.6g (spectrum %.6g, SW %.6g)\n", i.loss_total, i.loss_spectrum,
-              i.loss_sw);
-  std::printf("optimization   %d iterations, %.2f s, engine %s, profile %s\n", i.iterations,
-              i.optimize_seconds, i.engine.c_str(), i.profile.c_str());
-  std::printf("from cache     %s\n", i.from_cache ? "yes" : "no");
-  std::printf("wrote          %s\n", out->c_str());
-  return 0;
+int RunGet(const GetOptions& o) {
+  if (o.dirs.size() > 2) {
+    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
+                                         std::to_string(o.dirs.size())));
+  }
+  if (o.sets && o.realization + *o.sets - 1 > SetRequest::kMaxRealization) {
+    return Usage(Status::InvalidArgument(
+        "realizations " + std::to_string(o.realization) + ".." +
+        std::to_string(o.realization + *o.sets - 1) + " go past the maximum of " +
+        std::to_string(SetRequest::kMaxRealization)));
+  }
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
+
+  std::vector<AlignedSet> sets;
+  if (o.sets) {
+    auto many = GetMany(**client, o);
+    if (!many.ok()) return Failure(many.status());
+    sets = std::move(many).value();
+  } else {
+    auto one = WatchOne(**client, o);
+    if (!one.ok()) return Failure(one.status());
+    sets.push_back(std::move(one).value());
+  }
+
+  std::string comment;
+  std::vector<PointSet> points;
+  for (const AlignedSet& s : sets) {
+    comment += (comment.empty() ? "" : "\n") + Comment(s.info);
+    points.push_back(s.points);
+  }
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
+
+  FILE* report = ReportStreamFor(o.out);
+  const SetInfo& i = sets[0].info;
+  std::fprintf(report, "N              %u\n", i.n);
+  std::fprintf(report, "directions     0, 90, %s (served; deg, spectral = edge normal)\n",
+               Join(i.served_deg).c_str());
+  std::fprintf(report, "canonical key  %s (index %llu)\n", i.key_text.c_str(),
+               static_cast<unsigned long long>(i.key_index));
+  std::fprintf(report, "alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
+               i.inverted ? "yes" : "no");
+  for (const AlignedSet& s : sets) {
+    const SetInfo& si = s.info;
+    if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
+                             static_cast<unsigned long long>(si.seed));
+    std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
+                 si.loss_spectrum, si.loss_sw);
+    std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n",
+                 si.iterations, si.optimize_seconds, si.engine.c_str(), si.profile.c_str());
+    std::fprintf(report, "from cache     %s\n", si.from_cache ? "yes" : "no");
+  }
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddGetCommand(CLI::App& app) {
+  auto o = std::make_shared<GetOptions>();
+  CLI::App* c = AddCommand(app, "get",
+                           "an aligned set from alignset-server (.npy or UTK text by extension)");
+  // The server checks N against its own maximum; here only the type.
+  c->add_option("-n,--n", o->n, "number of points")->required()->check(IntegerIn(0, UINT32_MAX));
+  c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
+      ->required();
+  c->add_option("-r,--realization", o->realization,
+                "which of the key's independent sets (0 .. 63; 0: the key's first)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, SetRequest::kMaxRealization));
+  c->add_option("-m,--sets", o->sets,
+                "several realizations, R .. R+M-1, in one call: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  c->add_flag("-q,--quiet", o->quiet, "no progress display");
+  AddServiceOptions(c, &o->service);
+  c->callback([o] { Finish(RunGet(*o)); });
 }
 
 }  // namespace alignset::cli

@@ -1,8 +1,10 @@
 #include <chrono>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "client/progress.h"
@@ -12,119 +14,176 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("optimize", s, kExitUsage); }
+struct OptimizeOptions {
+  int64_t n = 0;
+  std::vector<double> dirs;
+  int64_t seed = 1;
+  OptimizerOptions optimizer;
+  int64_t threads = 0;
+  std::string engine = "auto";
+  std::string out;
+  // Overrides of the frequency set's shape; unset ones keep the default.
+  std::optional<double> length, width, radius;
+  // -m: several sets, one per seed, written as a multi-set file.
+  std::optional<int> sets;
+};
 
-}  // namespace
+int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
+int Failure(const Status& s) { return ReportError("optimize", s, kExitFailure); }
 
-int RunOptimize(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv,
-                          {"n", "dir", "seed", "max-iterations", "engine", "threads", "out",
-                           "learning-rate", "length", "width", "radius", "sw-weight", "anneal", "revert-divisor"});
-  if (!args.ok()) return Fail(args.status());
-  if (!args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
+int RunOptimize(const OptimizeOptions& o) {
+  if (o.dirs.size() > 2) {
+    return Usage(Status::InvalidArgument("give one or two --dir angles (degrees), got " +
+                                         std::to_string(o.dirs.size())));
   }
-  if (!args->Has("n")) return Fail(Status::InvalidArgument("--n is required"));
-  if (!args->Has("out")) return Fail(Status::InvalidArgument("--out is required"));
-  auto n = args->Int("n", 0, kMinPoints, kMaxPoints);
-  if (!n.ok()) return Fail(n.status());
-  auto dirs = args->Doubles("dir");
-  if (!dirs.ok()) return Fail(dirs.status());
-  if (dirs->empty() || dirs->size() > 2) {
-    return Fail(Status::InvalidArgument("give one or two --dir angles (degrees), got " +
-                                        std::to_string(dirs->size())));
-  }
-  auto seed = args->Int("seed", 1, 0, INT64_MAX);
-  if (!seed.ok()) return Fail(seed.status());
-  OptimizerOptions options;
-  auto iters = args->Int("max-iterations", options.max_iterations, 0, 100000000);
-  if (!iters.ok()) return Fail(iters.status());
-  options.max_iterations = static_cast<int>(*iters);
-  auto lr = args->Double("learning-rate", 0.0);
-  if (!lr.ok()) return Fail(lr.status());
-  options.learning_rate = *lr;
-  auto sw_weight = args->Double("sw-weight", options.sw_weight);
-  if (!sw_weight.ok()) return Fail(sw_weight.status());
-  options.sw_weight = *sw_weight;
-  auto divisor = args->Double("revert-divisor", options.revert_divisor);
-  if (!divisor.ok()) return Fail(divisor.status());
-  options.revert_divisor = *divisor;
-  auto anneal = args->Double("anneal", options.anneal_ratio);
-  if (!anneal.ok()) return Fail(anneal.status());
-  options.anneal_ratio = *anneal;
-  auto threads = args->Int("threads", 0, 0, 1024);
-  if (!threads.ok()) return Fail(threads.status());
-  auto engine_name = args->String("engine", "auto");
-  if (!engine_name.ok()) return Fail(engine_name.status());
-  auto kind = ParseEngineKind(*engine_name);
-  if (!kind.ok()) return Fail(kind.status());
-  auto out = args->String("out", "");
-  if (!out.ok()) return Fail(out.status());
-
+  auto kind = ParseEngineKind(o.engine);
+  if (!kind.ok()) return Usage(kind.status());
+  const OptimizerOptions& options = o.optimizer;
   OptimizationProblem problem;
-  problem.n = static_cast<uint32_t>(*n);
-  problem.directions = *dirs;
-  problem.seed = static_cast<uint64_t>(*seed);
-  if (args->Has("length") || args->Has("width") || args->Has("radius")) {
-    // Overrides of the frequency set's shape; unspecified ones keep the default.
-    FrequencyParams fp = DefaultFrequencyParams(problem.n);
-    auto length = args->Double("length", fp.length);
-    auto width = args->Double("width", fp.width);
-    auto radius = args->Double("radius", fp.radius);
-    for (const auto* v : {&length, &width, &radius}) {
-      if (!v->ok()) return Fail(v->status());
-    }
-    problem.frequency_params = FrequencyParams{*length, *width, *radius};
+  problem.n = static_cast<uint32_t>(o.n);
+  problem.directions = o.dirs;
+  problem.seed = static_cast<uint64_t>(o.seed);
+  if (o.length || o.width || o.radius) {
+    const FrequencyParams fp = DefaultFrequencyParams(problem.n);
+    problem.frequency_params = FrequencyParams{o.length.value_or(fp.length),
+                                               o.width.value_or(fp.width),
+                                               o.radius.value_or(fp.radius)};
   }
-  if (Status s = ValidateProblem(problem); !s.ok()) return Fail(s);
+  if (Status s = ValidateProblem(problem); !s.ok()) return Usage(s);
 
   // Fail before the work if the output cannot be written.
-  if (Status s = WritePointFile(*out, {}, "alignset: optimization in progress"); !s.ok()) {
-    return Fail(s);
+  if (!IsStdStream(o.out)) {
+    if (Status s = WritePointFile(o.out, {}, "alignset: optimization in progress"); !s.ok()) {
+      return Failure(s);
+    }
   }
-  auto engine = MakeSpectralEngine(*kind, static_cast<int>(*threads));
-  if (!engine.ok()) return Fail(engine.status());
+  auto engine = MakeSpectralEngine(*kind, static_cast<int>(o.threads));
+  if (!engine.ok()) return Failure(engine.status());
 
-  Progress progress("optimize");
-  const auto t0 = std::chrono::steady_clock::now();
-  auto result = Optimize(problem, options, **engine, [&](const ProgressInfo& p) {
-    char detail[160];
-    std::snprintf(detail, sizeof(detail), "loss %.5g (spec %.4g sw %.3g) lr %.2g reverts %d",
-                  p.loss, p.spectrum_loss, p.sw_loss, p.learning_rate, p.reverts);
-    progress.Update(p.iteration, p.max_iterations, detail);
-    return true;
-  });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!result.ok()) return Fail(result.status());
-  progress.Finish("");
+  // -m M: M sets from the seeds seed, seed + 1, ... (UTK's -m).
+  const int sets = o.sets.value_or(1);
+  std::vector<OptimizationResult> results;
+  std::vector<double> seconds;
+  for (int i = 0; i < sets; ++i) {
+    problem.seed = static_cast<uint64_t>(o.seed) + static_cast<uint64_t>(i);
+    Progress progress(sets == 1 ? "optimize"
+                                : "optimize " + std::to_string(i + 1) + "/" + std::to_string(sets));
+    const auto t0 = std::chrono::steady_clock::now();
+    auto result = Optimize(problem, options, **engine, [&](const ProgressInfo& p) {
+      char detail[160];
+      std::snprintf(detail, sizeof(detail), "loss %.5g (spec %.4g sw %.3g) lr %.2g reverts %d",
+                    p.loss, p.spectrum_loss, p.sw_loss, p.learning_rate, p.reverts);
+      progress.Update(p.iteration, p.max_iterations, detail);
+      return true;
+    });
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (!result.ok()) return Failure(result.status());
+    progress.Finish("");
+    results.push_back(std::move(result).value());
+  }
 
   std::string dir_text;
   for (double d : problem.directions) dir_text += (dir_text.empty() ? "" : ",") + std::to_string(d);
-  char comment[512];
-  std::snprintf(comment, sizeof(comment),
-                "alignset optimized set: N=%u directions(deg, edge normal)=0,90,%s seed=%llu\n"
-                "loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s",
-                problem.n, dir_text.c_str(), static_cast<unsigned long long>(problem.seed),
-                result->final_loss.total, result->final_loss.spectrum, result->final_loss.sw,
-                result->iterations, (*engine)->name().c_str());
-  if (Status s = WritePointFile(*out, result->points, comment); !s.ok()) return Fail(s);
+  std::string comment;
+  std::vector<PointSet> points;
+  for (int i = 0; i < sets; ++i) {
+    const OptimizationResult& r = results[i];
+    char line[512];
+    std::snprintf(line, sizeof(line),
+                  "%salignset optimized set%s: N=%u directions(deg, edge normal)=0,90,%s seed=%llu\n"
+                  "loss=%.9g spectrum=%.9g sw=%.9g iterations=%d engine=%s",
+                  i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", problem.n,
+                  dir_text.c_str(), static_cast<unsigned long long>(o.seed + i), r.final_loss.total,
+                  r.final_loss.spectrum, r.final_loss.sw, r.iterations, (*engine)->name().c_str());
+    comment += line;
+    points.push_back(r.points);
+  }
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
 
-  std::printf("N              %u\n", problem.n);
-  std::printf("directions     0, 90, %s (deg, spectral = edge normal)\n", dir_text.c_str());
-  std::printf("frequencies    |K| = %zu (length %.1f, width %.2f, radius %.1f)\n",
-              result->frequency_count, result->frequency_params.length,
-              result->frequency_params.width, result->frequency_params.radius);
-  std::printf("engine         %s\n", (*engine)->name().c_str());
-  std::printf("loss           %.6g -> %.6g\n", result->initial.total, result->final_loss.total);
-  std::printf("spectrum loss  %.6g -> %.6g (mean periodogram over K; white noise = 1)\n",
-              result->initial.spectrum, result->final_loss.spectrum);
-  std::printf("SW loss        %.6g -> %.6g\n", result->initial.sw, result->final_loss.sw);
-  std::printf("iterations     %d (%s, %d reverts, final learning rate %.3g)\n", result->iterations,
-              StopReasonName(result->stop_reason).c_str(), result->reverts,
-              result->final_learning_rate);
-  std::printf("time           %.2f s\n", seconds);
-  std::printf("wrote          %s\n", out->c_str());
-  return 0;
+  FILE* report = ReportStreamFor(o.out);
+  const OptimizationResult& first = results[0];
+  std::fprintf(report, "N              %u\n", problem.n);
+  std::fprintf(report, "directions     0, 90, %s (deg, spectral = edge normal)\n", dir_text.c_str());
+  std::fprintf(report, "frequencies    |K| = %zu (length %.1f, width %.2f, radius %.1f)\n",
+               first.frequency_count, first.frequency_params.length, first.frequency_params.width,
+               first.frequency_params.radius);
+  std::fprintf(report, "engine         %s\n", (*engine)->name().c_str());
+  for (int i = 0; i < sets; ++i) {
+    const OptimizationResult& r = results[i];
+    if (sets > 1) {
+      std::fprintf(report, "set %-10d seed %llu\n", i, static_cast<unsigned long long>(o.seed + i));
+    }
+    std::fprintf(report, "loss           %.6g -> %.6g\n", r.initial.total, r.final_loss.total);
+    std::fprintf(report, "spectrum loss  %.6g -> %.6g (mean periodogram over K; white noise = 1)\n",
+                 r.initial.spectrum, r.final_loss.spectrum);
+    std::fprintf(report, "SW loss        %.6g -> %.6g\n", r.initial.sw, r.final_loss.sw);
+    std::fprintf(report, "iterations     %d (%s, %d reverts, final learning rate %.3g)\n",
+                 r.iterations, StopReasonName(r.stop_reason).c_str(), r.reverts,
+                 r.final_learning_rate);
+    std::fprintf(report, "time           %.2f s\n", seconds[i]);
+  }
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddOptimizeCommand(CLI::App& app) {
+  auto o = std::make_shared<OptimizeOptions>();
+  CLI::App* c = AddCommand(app, "optimize",
+                           "optimize an aligned set locally (no server)\n"
+                           "(DEG: spectral direction = edge normal)");
+  c->add_option("-n,--n", o->n, "number of points")
+      ->required()
+      ->check(IntegerIn(kMinPoints, kMaxPoints));
+  c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("-s,--seed", o->seed, "seed of the Owen-scrambled Sobol start")
+      ->capture_default_str()
+      ->check(IntegerIn(0, INT64_MAX));
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
+      ->required();
+  c->add_option("-m,--sets", o->sets,
+                "several sets, from the seeds S, S+1, ...: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, 4096));
+  c->add_option("--engine", o->engine, "spectral engine: auto, direct, fast or cuda")
+      ->capture_default_str();
+  c->add_option("--threads", o->threads, "engine threads (0: all cores)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, 1024));
+  const std::string tuning = "Tuning";
+  c->add_option("--max-iterations", o->optimizer.max_iterations,
+                "iteration budget (0: 1000 up to N = 4096, then growing like sqrt N)")
+      ->check(IntegerIn(0, 100000000))
+      ->group(tuning);
+  c->add_option("--learning-rate", o->optimizer.learning_rate,
+                "first Adam step (0: 0.05 / the largest suppressed frequency)")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--sw-weight", o->optimizer.sw_weight, "weight c of the SW loss (0: 4N)")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--anneal", o->optimizer.anneal_ratio, "final / first learning rate")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--revert-divisor", o->optimizer.revert_divisor,
+                "learning-rate divisor on a revert")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--length", o->length, "strip half-length L (default: from N)")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--width", o->width, "strip width W (default: from N)")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--radius", o->radius, "disk radius R (default: from N)")
+      ->check(FiniteNumber())
+      ->group(tuning);
+  c->callback([o] { Finish(RunOptimize(*o)); });
 }
 
 }  // namespace alignset::cli

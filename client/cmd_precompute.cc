@@ -1,16 +1,19 @@
 #include <cstdio>
+#include <memory>
 #include <sstream>
 #include <string>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/progress.h"
-#include "client/service_flags.h"
+#include "client/service_options.h"
+#include "core/optimize/optimizer.h"
+#include "core/util/number_text.h"
 
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("precompute", s, kExitService); }
+int Usage(const Status& s) { return ReportError("precompute", s, kExitUsage); }
+int Failure(const Status& s) { return ReportError("precompute", s, kExitFailure); }
 
 // "3/8" -> shard 3 of 8 (0-based index).
 Status ParseShard(const std::string& text, PrecomputeSpec* spec) {
@@ -25,48 +28,45 @@ Status ParseShard(const std::string& text, PrecomputeSpec* spec) {
   return Status::Ok();
 }
 
-}  // namespace
+struct PrecomputeOptions {
+  std::vector<int64_t> n;
+  std::string space;  // empty: keys when --key is given, else 1dir
+  std::vector<std::string> keys;
+  std::string shard;
+  int64_t realizations = 1;
+  ServiceOptions service;
+};
 
-int RunPrecompute(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, ServiceFlags({"n", "space", "shard", "key"}));
-  if (!args.ok()) return Fail(args.status());
-  if (!args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
-  }
-  if (!args->Has("n")) return Fail(Status::InvalidArgument("--n is required (e.g. --n 1024,4096)"));
+int RunPrecompute(const PrecomputeOptions& o) {
   PrecomputeSpec spec;
-  auto ns = ParseCountList(args->String("n", "").value(), "--n");
-  if (!ns.ok()) return Fail(ns.status());
-  spec.n = *ns;
-  auto space = args->String("space", args->Has("key") ? "keys" : "1dir");
-  if (!space.ok()) return Fail(space.status());
-  if (*space == "1dir") {
+  for (int64_t n : o.n) spec.n.push_back(static_cast<uint32_t>(n));
+  spec.realizations = static_cast<uint32_t>(o.realizations);
+  const std::string space = !o.space.empty() ? o.space : o.keys.empty() ? "1dir" : "keys";
+  if (space == "1dir") {
     spec.space = 1;
-  } else if (*space == "2dir") {
+  } else if (space == "2dir") {
     spec.space = 2;
-  } else if (*space == "keys") {
-    spec.space = 0;
   } else {
-    return Fail(Status::InvalidArgument("--space must be 1dir, 2dir or keys, got '" + *space + "'"));
+    spec.space = 0;
   }
-  if ((spec.space == 0) != args->Has("key")) {
-    return Fail(Status::InvalidArgument("--key DEG[,DEG] goes with --space keys (and only with it)"));
+  if ((spec.space == 0) != !o.keys.empty()) {
+    return Usage(Status::InvalidArgument("--key DEG[,DEG] goes with --space keys (and only with it)"));
   }
-  for (const std::string& k : args->All("key")) {
+  for (const std::string& k : o.keys) {
     std::vector<int> dirs;
     std::stringstream ss(k);
     for (std::string d; std::getline(ss, d, ',');) {
       auto v = ParseInt(d, "--key", -1000000, 1000000);
-      if (!v.ok()) return Fail(v.status());
+      if (!v.ok()) return Usage(v.status());
       dirs.push_back(static_cast<int>(*v));
     }
     spec.keys.push_back(dirs);
   }
-  if (args->Has("shard")) {
-    if (Status s = ParseShard(args->String("shard", "").value(), &spec); !s.ok()) return Fail(s);
+  if (!o.shard.empty()) {
+    if (Status s = ParseShard(o.shard, &spec); !s.ok()) return Usage(s);
   }
-  auto client = ConnectFromArgs(*args);
-  if (!client.ok()) return Fail(client.status());
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
 
   Progress progress("precompute");
   auto last = (*client)->Precompute(spec, [&](const PrecomputeUpdate& u) {
@@ -78,7 +78,7 @@ int RunPrecompute(int argc, char** argv) {
                   FormatDuration(u.estimated_seconds_left).c_str());
     progress.Update(static_cast<double>(u.total - u.remaining), static_cast<double>(u.total), detail);
   });
-  if (!last.ok()) return Fail(last.status());
+  if (!last.ok()) return Failure(last.status());
   progress.Finish("");
   std::printf("items          %llu\n", static_cast<unsigned long long>(last->total));
   std::printf("optimized      %llu\n", static_cast<unsigned long long>(last->done));
@@ -89,9 +89,34 @@ int RunPrecompute(int argc, char** argv) {
     std::fprintf(stderr, "alignset precompute: %llu item(s) failed%s%s\n",
                  static_cast<unsigned long long>(last->failed),
                  last->last_error.empty() ? "" : "; last error: ", last->last_error.c_str());
-    return 1;
+    return kExitFailure;
   }
-  return 0;
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddPrecomputeCommand(CLI::App& app) {
+  auto o = std::make_shared<PrecomputeOptions>();
+  CLI::App* c = AddCommand(app, "precompute",
+                           "fill the server's cache, with progress and ETA (re-run resumes)");
+  c->add_option("-n,--n", o->n, "point counts, comma-separated (e.g. 1024,4096)")
+      ->required()
+      ->delimiter(',')
+      ->check(IntegerIn(kMinPoints, kMaxPoints));
+  c->add_option("--space", o->space,
+                "1dir (the 46 one-direction keys), 2dir (the 4141 pairs) or keys (--key)\n"
+                "(default: keys with --key, else 1dir)")
+      ->check(CLI::IsMember({"1dir", "2dir", "keys"}));
+  c->add_option("--key", o->keys, "an explicit key DEG[,DEG], repeatable (with --space keys)")
+      ->allow_extra_args(false);
+  c->add_option("--shard", o->shard, "this run's shard i/M of the work items (0 <= i < M)");
+  c->add_option("-m,--realizations", o->realizations,
+                "realizations 0 .. R-1 of every key (each an independent set)")
+      ->capture_default_str()
+      ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  AddServiceOptions(c, &o->service);
+  c->callback([o] { Finish(RunPrecompute(*o)); });
 }
 
 }  // namespace alignset::cli

@@ -1,7 +1,9 @@
 #include <cstdio>
+#include <memory>
+#include <optional>
+#include <vector>
 #include <string>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "core/sampling/samplers.h"
@@ -10,54 +12,87 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("sample", s, kExitUsage); }
+struct SampleOptions {
+  std::string kind;
+  int64_t n = 0;
+  int64_t seed = 1;
+  double shear = 0.0;
+  bool sheared = false;
+  std::string out;
+  bool list = false;
+  // -m: several sets, from the seeds seed, seed + 1, ... (UTK's -m).
+  std::optional<int> sets;
+};
 
-void PrintSamplers() {
-  std::printf("usage: alignset sample KIND --n N [--seed S] [--shear DEG] --out FILE\n"
-              "  --shear DEG  shear the set (Algorithm 2) so that its dark axis moves onto\n"
-              "               DEG (spectral direction = edge normal)\n\nkinds:\n");
+int Usage(const Status& s) { return ReportError("sample", s, kExitUsage); }
+
+std::string SamplerList() {
+  std::string text = "Kinds:\n";
   for (const SamplerInfo& s : Samplers()) {
-    std::printf("  %-22s %s\n", s.name.c_str(), s.description.c_str());
+    char line[256];
+    std::snprintf(line, sizeof(line), "  %-22s %s\n", s.name.c_str(), s.description.c_str());
+    text += line;
   }
+  return text;
+}
+
+int RunSample(const SampleOptions& o) {
+  if (o.list) {
+    std::fputs(SamplerList().c_str(), stdout);
+    return kExitOk;
+  }
+  if (o.kind.empty()) {
+    std::string known;
+    for (const std::string& n : SamplerNames()) known += (known.empty() ? "" : ", ") + n;
+    return Usage(Status::InvalidArgument("expected one sampler KIND (" + known + ")"));
+  }
+  if (o.n == 0) return Usage(Status::InvalidArgument("--n is required"));
+  if (o.out.empty()) return Usage(Status::InvalidArgument("--out is required"));
+  const int count = o.sets.value_or(1);
+  std::vector<PointSet> sets;
+  for (int i = 0; i < count; ++i) {
+    auto points = Sample(o.kind, static_cast<uint32_t>(o.n), static_cast<uint64_t>(o.seed + i));
+    if (!points.ok()) return Usage(points.status());
+    sets.push_back(o.sheared ? Shear(*points, o.shear) : std::move(points).value());
+  }
+  std::string comment = "alignset sample " + o.kind + " N=" + std::to_string(o.n) +
+                        (count > 1 ? " seeds=" + std::to_string(o.seed) + ".." +
+                                         std::to_string(o.seed + count - 1)
+                                   : " seed=" + std::to_string(o.seed));
+  if (o.sheared) {
+    comment += " sheared to " + std::to_string(o.shear) + " deg (spectral direction = edge normal)";
+  }
+  const Status written = o.sets ? WritePointSets(o.out, sets, comment)
+                                : WritePointFile(o.out, sets[0], comment);
+  if (!written.ok()) return ReportError("sample", written, kExitFailure);
+  const std::string sets_text = o.sets ? std::to_string(count) + " sets of " : "";
+  std::fprintf(ReportStreamFor(o.out), "wrote %s%lld %s points to %s\n", sets_text.c_str(),
+               static_cast<long long>(o.n), o.kind.c_str(), o.out.c_str());
+  return kExitOk;
 }
 
 }  // namespace
 
-int RunSample(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"n", "seed", "shear", "out"}, {"help", "list"});
-  if (!args.ok()) return Fail(args.status());
-  if (args->Has("help") || args->Has("list")) {
-    PrintSamplers();
-    return 0;
-  }
-  if (args->positionals().size() != 1) {
-    std::string known;
-    for (const std::string& n : SamplerNames()) known += (known.empty() ? "" : ", ") + n;
-    return Fail(Status::InvalidArgument("expected one sampler KIND (" + known + ")"));
-  }
-  const std::string kind = args->positionals()[0];
-  if (!args->Has("n")) return Fail(Status::InvalidArgument("--n is required"));
-  if (!args->Has("out")) return Fail(Status::InvalidArgument("--out is required"));
-  auto n = args->Int("n", 0, 1, 1 << 20);
-  if (!n.ok()) return Fail(n.status());
-  auto seed = args->Int("seed", 1, 0, INT64_MAX);
-  if (!seed.ok()) return Fail(seed.status());
-  auto out = args->String("out", "");
-  if (!out.ok()) return Fail(out.status());
-
-  auto points = Sample(kind, static_cast<uint32_t>(*n), static_cast<uint64_t>(*seed));
-  if (!points.ok()) return Fail(points.status());
-  std::string comment = "alignset sample " + kind + " N=" + std::to_string(*n) +
-                        " seed=" + std::to_string(*seed);
-  if (args->Has("shear")) {
-    auto shear = args->Double("shear", 0.0);
-    if (!shear.ok()) return Fail(shear.status());
-    *points = Shear(*points, *shear);
-    comment += " sheared to " + std::to_string(*shear) + " deg (spectral direction = edge normal)";
-  }
-  if (Status s = WritePointFile(*out, *points, comment); !s.ok()) return Fail(s);
-  std::printf("wrote %zu %s points to %s\n", points->size(), kind.c_str(), out->c_str());
-  return 0;
+void AddSampleCommand(CLI::App& app) {
+  auto o = std::make_shared<SampleOptions>();
+  CLI::App* c = AddCommand(app, "sample", "a set from a classic sampler (--list names them)");
+  c->add_option("KIND", o->kind, "sampler name (see --list)");
+  c->add_option("-n,--n", o->n, "number of points")->check(IntegerIn(1, 1 << 20));
+  c->add_option("-s,--seed", o->seed, "seed")->capture_default_str()->check(IntegerIn(0, INT64_MAX));
+  CLI::Option* shear = c->add_option("--shear", o->shear,
+                "shear the set (Algorithm 2) so that its dark axis moves onto DEG\n"
+                "(spectral direction = edge normal)")
+      ->check(FiniteNumber());
+  c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout");
+  c->add_option("-m,--sets", o->sets,
+                "several sets, from the seeds S, S+1, ...: '#'-separated text, (m, N, 2) .npy")
+      ->check(IntegerIn(1, 1 << 16));
+  c->add_flag("--list", o->list, "list the sampler kinds and exit");
+  c->footer([] { return SamplerList(); });
+  c->callback([o, shear] {
+    o->sheared = shear->count() > 0;
+    Finish(RunSample(*o));
+  });
 }
 
 }  // namespace alignset::cli

@@ -1,31 +1,28 @@
 #include <cstdio>
+#include <memory>
 #include <string>
 
-#include "client/args.h"
 #include "client/commands.h"
-#include "client/service_flags.h"
+#include "client/service_options.h"
 
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("stats", s, kExitService); }
+int Usage(const Status& s) { return ReportError("stats", s, kExitUsage); }
+int Failure(const Status& s) { return ReportError("stats", s, kExitFailure); }
 
-}  // namespace
+struct StatsOptions {
+  bool list = false;
+  int64_t n = 0;
+  int64_t limit = 100;
+  ServiceOptions service;
+};
 
-int RunStats(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, ServiceFlags({"n", "limit"}), {"list"});
-  if (!args.ok()) return Fail(args.status());
-  if (!args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("unexpected argument '" + args->positionals()[0] + "'"));
-  }
-  auto n = args->Int("n", 0, 0, UINT32_MAX);
-  if (!n.ok()) return Fail(n.status());
-  auto limit = args->Int("limit", 100, 0, UINT32_MAX);
-  if (!limit.ok()) return Fail(limit.status());
-  auto client = ConnectFromArgs(*args);
-  if (!client.ok()) return Fail(client.status());
+int RunStats(const StatsOptions& o) {
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
   auto stats = (*client)->GetCacheStats();
-  if (!stats.ok()) return Fail(stats.status());
+  if (!stats.ok()) return Failure(stats.status());
   const ServiceMetrics& m = stats->metrics;
   std::printf("database          %s\n", stats->database_path.c_str());
   std::printf("sets              %lld (%lld one-direction, %lld two-direction), %.1f MiB\n",
@@ -49,12 +46,27 @@ int RunStats(int argc, char** argv) {
               m.optimize_seconds_max);
   std::printf("queue             %u waiting, %u running, %llu rejected (full)\n", m.queue_length,
               m.running, (unsigned long long)m.rejected_queue_full);
-  if (args->Has("list")) {
-    auto keys = (*client)->ListCachedSets(static_cast<uint32_t>(*n), "", static_cast<uint32_t>(*limit));
-    if (!keys.ok()) return Fail(keys.status());
+  if (o.list) {
+    auto keys = (*client)->ListCachedSets(static_cast<uint32_t>(o.n), "", static_cast<uint32_t>(o.limit));
+    if (!keys.ok()) return Failure(keys.status());
     for (const CachedKey& k : *keys) std::printf("  %s\n", k.text.c_str());
   }
-  return 0;
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddStatsCommand(CLI::App& app) {
+  auto o = std::make_shared<StatsOptions>();
+  CLI::App* c = AddCommand(app, "stats", "the server's cache contents and metrics");
+  c->add_flag("--list", o->list, "also list the cached keys");
+  c->add_option("-n,--n", o->n, "with --list: only this N (0: every N)")
+      ->check(IntegerIn(0, UINT32_MAX));
+  c->add_option("--limit", o->limit, "with --list: at most this many keys (0: no limit)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, UINT32_MAX));
+  AddServiceOptions(c, &o->service);
+  c->callback([o] { Finish(RunStats(*o)); });
 }
 
 }  // namespace alignset::cli

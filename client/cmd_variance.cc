@@ -1,8 +1,8 @@
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "client/args.h"
 #include "client/commands.h"
 #include "client/point_file.h"
 #include "core/analysis/step_integrand.h"
@@ -11,42 +11,65 @@
 namespace alignset::cli {
 namespace {
 
-int Fail(const Status& s) { return ReportError("variance", s, kExitUsage); }
+struct VarianceOptions {
+  std::vector<std::string> files;
+  std::vector<double> normals;
+  int64_t shifts = 4096;
+  int64_t seed = 7;
+};
 
-}  // namespace
+int Usage(const Status& s) { return ReportError("variance", s, kExitUsage); }
 
-// alignset variance FILE... --normal DEG [--normal DEG ...] [--shifts K] [--seed S]
 // Machine-readable CP-rotated variance on step edges through the centre, one
-// tab-separated line per (file, normal): file, N, normal, variance, std. error.
+// tab-separated line per (set, normal): file, N, normal, variance, std. error.
 // Every set sees the same shifts for a given seed.
-int RunVariance(int argc, char** argv) {
-  auto args = Args::Parse(argc, argv, {"normal", "shifts", "seed"});
-  if (!args.ok()) return Fail(args.status());
-  if (args->positionals().empty()) {
-    return Fail(Status::InvalidArgument("expected one or more point-set files"));
+int RunVariance(const VarianceOptions& o) {
+  // Every file is read before the first line, so a bad one leaves no output.
+  // A file with several sets gives one line per set, named FILE[k].
+  std::vector<std::string> names;
+  std::vector<PointSet> sets;
+  for (const std::string& path : o.files) {
+    auto read = ReadPointSets(path);
+    if (!read.ok()) return Usage(read.status());
+    for (size_t k = 0; k < read->size(); ++k) {
+      names.push_back(read->size() > 1 ? path + "[" + std::to_string(k) + "]" : path);
+      sets.push_back(std::move((*read)[k]));
+    }
   }
-  auto normals = args->Doubles("normal");
-  if (!normals.ok()) return Fail(normals.status());
-  if (normals->empty()) return Fail(Status::InvalidArgument("--normal DEG is required"));
-  auto shifts = args->Int("shifts", 4096, 16, 1 << 24);
-  if (!shifts.ok()) return Fail(shifts.status());
-  auto seed = args->Int("seed", 7, 0, INT64_MAX);
-  if (!seed.ok()) return Fail(seed.status());
   std::printf("# file\tN\tnormal_deg\tvariance\tstd_error\n");
-  for (const std::string& path : args->positionals()) {
-    auto points = ReadPointFile(path);
-    if (!points.ok()) return Fail(points.status());
-    if (points->empty()) return Fail(Status::InvalidArgument(path + ": no points"));
-    for (double normal : *normals) {
+  for (size_t i = 0; i < sets.size(); ++i) {
+    const std::string& path = names[i];
+    const PointSet* points = &sets[i];
+    for (double normal : o.normals) {
       const StepIntegrand f(normal);
       const VarianceEstimate v = CranleyPattersonVariance(
           *points, [&f](const Point2& p) { return f(p); }, f.Integral(),
-          static_cast<int>(*shifts), static_cast<uint64_t>(*seed));
+          static_cast<int>(o.shifts), static_cast<uint64_t>(o.seed));
       std::printf("%s\t%zu\t%.9g\t%.9e\t%.3e\n", path.c_str(), points->size(), normal, v.variance,
                   v.std_error);
     }
   }
-  return 0;
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddVarianceCommand(CLI::App& app) {
+  auto o = std::make_shared<VarianceOptions>();
+  CLI::App* c = AddCommand(app, "variance",
+                           "CP-rotated variance on step edges, one tab-separated line each");
+  c->add_option("FILE", o->files, "point-set files (UTK text, .npy, .csv; - stdin), each with one or several sets")->required();
+  c->add_option("--normal", o->normals, "edge normal in degrees, repeatable")
+      ->required()
+      ->allow_extra_args(false)
+      ->check(FiniteNumber());
+  c->add_option("--shifts", o->shifts, "Cranley-Patterson shifts")
+      ->capture_default_str()
+      ->check(IntegerIn(16, 1 << 24));
+  c->add_option("-s,--seed", o->seed, "seed of the shifts")
+      ->capture_default_str()
+      ->check(IntegerIn(0, INT64_MAX));
+  c->callback([o] { Finish(RunVariance(*o)); });
 }
 
 }  // namespace alignset::cli

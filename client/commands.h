@@ -1,36 +1,26 @@
 #pragma once
 
-#include <string>
-
-#include "core/util/status.h"
+#include "client/cli_app.h"
 
 namespace alignset::cli {
 
-// Exit statuses: bad input or a failed local step, and a failed call to the
-// service (the server's answer is in the message).
-inline constexpr int kExitUsage = 2;
-inline constexpr int kExitService = 1;
-
-// Prints `s` as the one error line "alignset <command>: <message>" on stderr
-// and returns `exit_code`.
-int ReportError(const std::string& command, const Status& s, int exit_code);
-
-// Each subcommand takes the arguments after its name and returns the process
-// exit status; errors are printed as one line on stderr.
-int RunOptimize(int argc, char** argv);
-int RunEvaluate(int argc, char** argv);
-int RunSample(int argc, char** argv);
-int RunAlign(int argc, char** argv);
-int RunVariance(int argc, char** argv);
+// Each Add*Command registers one subcommand of `alignset` on `app`: its
+// options (CLI11) and the callback that runs it. A failing run prints one
+// line "alignset <command>: <message>" on stderr and ends with Finish(status).
+void AddOptimizeCommand(CLI::App& app);
+void AddEvaluateCommand(CLI::App& app);
+void AddSampleCommand(CLI::App& app);
+void AddAlignCommand(CLI::App& app);
+void AddVarianceCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
-int RunCache(int argc, char** argv);
+void AddCacheCommand(CLI::App& app);
 #endif
 #ifdef ALIGNSET_HAVE_SERVICE
 // Clients of alignset-server (client/service_client.h).
-int RunGet(int argc, char** argv);
-int RunPrecompute(int argc, char** argv);
-int RunStats(int argc, char** argv);
+void AddGetCommand(CLI::App& app);
+void AddPrecomputeCommand(CLI::App& app);
+void AddStatsCommand(CLI::App& app);
 #endif
 
 }  // namespace alignset::cli

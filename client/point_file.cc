@@ -1,26 +1,44 @@
 #include "client/point_file.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
+#include <iterator>
 #include <sstream>
-
-#include <unistd.h>
 
 namespace alignset::cli {
 namespace {
+
+enum class Format { kText, kNpy, kCsv };
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-std::string NpyHeader(size_t n) {
-  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(n) +
-                     ", 2), }";
+Format FormatOf(const std::string& path) {
+  if (EndsWith(path, ".npy")) return Format::kNpy;
+  if (EndsWith(path, ".csv")) return Format::kCsv;
+  return Format::kText;
+}
+
+std::string Shape(const std::vector<size_t>& dims) {
+  std::string s = "(";
+  for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
+  return s + (dims.size() == 1 ? ",)" : ")");
+}
+
+// ------------------------------------------------------------------ write
+
+std::string NpyHeader(const std::vector<size_t>& dims) {
+  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " + Shape(dims) + ", }";
   // magic(6) + version(2) + header_len(2) + dict + padding + '\n' is a multiple of 64.
-  size_t total = 10 + dict.size() + 1;
+  const size_t total = 10 + dict.size() + 1;
   dict.append((64 - total % 64) % 64, ' ');
   dict.push_back('\n');
   std::string h("\x93NUMPY\x01\x00", 8);
@@ -30,51 +48,63 @@ std::string NpyHeader(size_t n) {
   return h + dict;
 }
 
-std::string Serialize(const std::string& path, const PointSet& points, const std::string& comment) {
-  if (EndsWith(path, ".npy")) {
-    std::string out = NpyHeader(points.size());
-    out.reserve(out.size() + points.size() * 16);
-    for (const Point2& p : points) {
-      out.append(reinterpret_cast<const char*>(&p.x), 8);
-      out.append(reinterpret_cast<const char*>(&p.y), 8);
-    }
-    return out;
-  }
-  std::ostringstream os;
-  if (!comment.empty()) {
-    std::istringstream lines(comment);
-    for (std::string line; std::getline(lines, line);) os << "# " << line << "\n";
-  }
+void AppendPair(std::string* out, const Point2& p, const char* format) {
   char buf[64];
-  for (const Point2& p : points) {
-    std::snprintf(buf, sizeof(buf), "%.17g %.17g\n", p.x, p.y);
-    os << buf;
-  }
-  return os.str();
+  const int len = std::snprintf(buf, sizeof(buf), format, p.x, p.y);
+  out->append(buf, static_cast<size_t>(len));
 }
 
-StatusOr<PointSet> ParseNpy(const std::string& data, const std::string& path) {
-  if (data.size() < 10 || data.compare(0, 6, "\x93NUMPY") != 0) {
-    return Status::InvalidArgument(path + ": not a .npy file");
+StatusOr<std::string> Serialize(const std::string& path, const std::vector<PointSet>& sets,
+                                bool several, const std::string& comment) {
+  std::string out;
+  switch (IsStdStream(path) ? Format::kText : FormatOf(path)) {
+    case Format::kNpy: {
+      const size_t n = sets.empty() ? 0 : sets[0].size();
+      for (const PointSet& s : sets) {
+        if (s.size() != n) {
+          return Status::InvalidArgument(path + ": the sets have different sizes (" +
+                                         std::to_string(n) + " and " + std::to_string(s.size()) +
+                                         "), which an (m, N, 2) .npy array cannot hold");
+        }
+      }
+      out = several ? NpyHeader({sets.size(), n, 2}) : NpyHeader({n, 2});
+      for (const PointSet& s : sets) {
+        out.append(reinterpret_cast<const char*>(s.data()), s.size() * sizeof(Point2));
+      }
+      return out;
+    }
+    case Format::kCsv:
+      // CSV has no comments: the metadata stays in text and .npy files' neighbours.
+      out = several ? "set,x,y\n" : "x,y\n";
+      for (size_t i = 0; i < sets.size(); ++i) {
+        for (const Point2& p : sets[i]) {
+          if (several) out += std::to_string(i) + ",";
+          AppendPair(&out, p, "%.17g,%.17g\n");
+        }
+      }
+      return out;
+    case Format::kText: {
+      std::istringstream lines(comment);
+      for (std::string line; std::getline(lines, line);) out += "# " + line + "\n";
+      for (size_t i = 0; i < sets.size(); ++i) {
+        // UTK's separator: a '#' line between sets.
+        if (i > 0) out += "#\n";
+        for (const Point2& p : sets[i]) AppendPair(&out, p, "%.17g %.17g\n");
+      }
+      return out;
+    }
   }
-  const size_t hlen = static_cast<unsigned char>(data[8]) | (static_cast<unsigned char>(data[9]) << 8);
-  if (data.size() < 10 + hlen) return Status::InvalidArgument(path + ": truncated .npy header");
-  const std::string header = data.substr(10, hlen);
-  if (header.find("'<f8'") == std::string::npos || header.find("False") == std::string::npos) {
-    return Status::InvalidArgument(path + ": only C-order little-endian float64 .npy is supported");
-  }
-  const size_t body = data.size() - 10 - hlen;
-  if (body % 16 != 0) return Status::InvalidArgument(path + ": .npy body is not (N, 2) float64");
-  PointSet pts(body / 16);
-  std::memcpy(pts.data(), data.data() + 10 + hlen, body);
-  return pts;
+  return out;
 }
 
-}  // namespace
-
-Status WritePointFile(const std::string& path, const PointSet& points, const std::string& comment) {
-  if (path.empty()) return Status::InvalidArgument("output path is empty");
-  const std::string data = Serialize(path, points, comment);
+Status WriteAll(const std::string& path, const std::string& data) {
+  if (IsStdStream(path)) {
+    if (std::fwrite(data.data(), 1, data.size(), stdout) != data.size() || std::fflush(stdout) != 0) {
+      return Status::InvalidArgument(std::string("cannot write to standard output: ") +
+                                     std::strerror(errno));
+    }
+    return Status::Ok();
+  }
   const std::string tmp = path + ".tmp." + std::to_string(getpid());
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
@@ -89,18 +119,212 @@ Status WritePointFile(const std::string& path, const PointSet& points, const std
   return Status::Ok();
 }
 
-StatusOr<PointSet> ReadPointFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Status::InvalidArgument("cannot read " + path + ": " + std::strerror(errno));
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (EndsWith(path, ".npy")) return ParseNpy(data, path);
-  PointSet pts;
+// ------------------------------------------------------------------- read
+
+Status CheckInside(const std::string& path, const std::vector<PointSet>& sets) {
+  for (size_t s = 0; s < sets.size(); ++s) {
+    for (size_t i = 0; i < sets[s].size(); ++i) {
+      const Point2& p = sets[s][i];
+      if (!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0)) {
+        char where[160];
+        std::snprintf(where, sizeof(where), ": point %zu%s (%.17g, %.17g) lies outside [0, 1)^2", i,
+                      sets.size() > 1 ? (" of set " + std::to_string(s)).c_str() : "", p.x, p.y);
+        return Status::InvalidArgument(path + where);
+      }
+    }
+  }
+  return Status::Ok();
+}
+
+// The header dictionary of a .npy file: dtype, order, shape.
+struct NpyHeaderInfo {
+  std::string descr;
+  bool fortran_order = false;
+  std::vector<size_t> shape;
+};
+
+StatusOr<NpyHeaderInfo> ParseNpyHeader(const std::string& h, const std::string& path) {
+  NpyHeaderInfo info;
+  auto value_of = [&](const std::string& key) -> std::string {
+    const size_t k = h.find("'" + key + "'");
+    if (k == std::string::npos) return "";
+    const size_t colon = h.find(':', k);
+    return colon == std::string::npos ? "" : h.substr(colon + 1);
+  };
+  const std::string descr = value_of("descr");
+  const size_t q1 = descr.find('\'');
+  const size_t q2 = q1 == std::string::npos ? q1 : descr.find('\'', q1 + 1);
+  if (q2 == std::string::npos) return Status::InvalidArgument(path + ": .npy header without a dtype");
+  info.descr = descr.substr(q1 + 1, q2 - q1 - 1);
+  const std::string order = value_of("fortran_order");
+  info.fortran_order = order.find("True") < order.find("False");
+  const std::string shape = value_of("shape");
+  const size_t open = shape.find('('), close = shape.find(')');
+  if (open == std::string::npos || close == std::string::npos || close < open) {
+    return Status::InvalidArgument(path + ": .npy header without a shape");
+  }
+  std::stringstream dims(shape.substr(open + 1, close - open - 1));
+  for (std::string d; std::getline(dims, d, ',');) {
+    if (d.find_first_not_of(" ") == std::string::npos) continue;
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(d.c_str(), &end, 10);
+    if (end == d.c_str()) return Status::InvalidArgument(path + ": bad .npy shape '" + shape + "'");
+    info.shape.push_back(static_cast<size_t>(v));
+  }
+  return info;
+}
+
+StatusOr<std::vector<PointSet>> ParseNpy(const std::string& data, const std::string& path) {
+  if (data.size() < 10 || data.compare(0, 6, "\x93NUMPY") != 0) {
+    return Status::InvalidArgument(path + ": not a .npy file");
+  }
+  const auto byte = [&](size_t i) { return static_cast<size_t>(static_cast<unsigned char>(data[i])); };
+  // Version 1 has a 2-byte header length, versions 2 and 3 a 4-byte one.
+  const size_t len_bytes = byte(6) == 1 ? 2 : 4;
+  if (data.size() < 8 + len_bytes) return Status::InvalidArgument(path + ": truncated .npy header");
+  size_t hlen = 0;
+  for (size_t i = 0; i < len_bytes; ++i) hlen |= byte(8 + i) << (8 * i);
+  const size_t body_at = 8 + len_bytes + hlen;
+  if (data.size() < body_at) return Status::InvalidArgument(path + ": truncated .npy header");
+  auto info = ParseNpyHeader(data.substr(8 + len_bytes, hlen), path);
+  if (!info.ok()) return info.status();
+  size_t item = 0;
+  if (info->descr == "<f8") {
+    item = 8;
+  } else if (info->descr == "<f4") {
+    item = 4;
+  } else {
+    return Status::InvalidArgument(path + ": dtype '" + info->descr +
+                                   "' is not supported; save little-endian float64 ('<f8')");
+  }
+  const std::vector<size_t>& dims = info->shape;
+  size_t count = 1;
+  for (size_t d : dims) count *= d;
+  if (data.size() - body_at != count * item) {
+    return Status::InvalidArgument(path + ": .npy body holds " + std::to_string(data.size() - body_at) +
+                                   " bytes, its shape " + Shape(dims) + " needs " +
+                                   std::to_string(count * item));
+  }
+  const char* body = data.data() + body_at;
+  // Element at a multi-index, in either memory order.
+  auto at = [&](std::initializer_list<size_t> idx) {
+    size_t flat = 0;
+    if (info->fortran_order) {
+      size_t stride = 1, k = 0;
+      for (size_t i : idx) {
+        flat += i * stride;
+        stride *= dims[k++];
+      }
+    } else {
+      size_t k = 0;
+      for (size_t i : idx) flat = flat * dims[k++] + i;
+    }
+    if (item == 8) {
+      double v;
+      std::memcpy(&v, body + flat * 8, 8);
+      return v;
+    }
+    float v;
+    std::memcpy(&v, body + flat * 4, 4);
+    return static_cast<double>(v);
+  };
+  std::vector<PointSet> sets;
+  if (dims.size() == 2 && dims[1] == 2) {  // (N, 2): the documented layout
+    PointSet s(dims[0]);
+    for (size_t i = 0; i < dims[0]; ++i) s[i] = {at({i, 0}), at({i, 1})};
+    sets.push_back(std::move(s));
+  } else if (dims.size() == 2 && dims[0] == 2) {  // (2, N), N != 2: x row, y row
+    PointSet s(dims[1]);
+    for (size_t i = 0; i < dims[1]; ++i) s[i] = {at({0, i}), at({1, i})};
+    sets.push_back(std::move(s));
+  } else if (dims.size() == 3 && dims[2] == 2) {  // (m, N, 2)
+    for (size_t m = 0; m < dims[0]; ++m) {
+      PointSet s(dims[1]);
+      for (size_t i = 0; i < dims[1]; ++i) s[i] = {at({m, i, 0}), at({m, i, 1})};
+      sets.push_back(std::move(s));
+    }
+  } else if (dims.size() == 1) {
+    return Status::InvalidArgument(path + ": a flat array of " + std::to_string(dims[0]) +
+                                   " values; points need shape (N, 2) (numpy: a.reshape(-1, 2))");
+  } else {
+    return Status::InvalidArgument(path + ": shape " + Shape(dims) +
+                                   " is not (N, 2), (2, N) or (m, N, 2)");
+  }
+  return sets;
+}
+
+// A finite number filling the whole field.
+bool ParseNumber(const std::string& text, double* v) {
+  const char* begin = text.c_str();
+  while (*begin == ' ' || *begin == '\t') ++begin;
+  char* end = nullptr;
+  errno = 0;
+  *v = std::strtod(begin, &end);
+  if (end == begin || errno == ERANGE || !std::isfinite(*v)) return false;
+  while (*end == ' ' || *end == '\t' || *end == '\r') ++end;
+  return *end == '\0';
+}
+
+StatusOr<std::vector<PointSet>> ParseCsv(const std::string& data, const std::string& path) {
+  std::vector<PointSet> sets;
+  std::istringstream lines(data);
+  int line_no = 0;
+  int columns = 0;  // 2: x,y; 3: set,x,y
+  for (std::string line; std::getline(lines, line);) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
+    const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    if (columns == 0 && sets.empty()) {
+      std::string header;
+      for (char c : line) {
+        if (c != ' ' && c != '\r') header += c;
+      }
+      if (header == "x,y" || header == "set,x,y") {
+        columns = header == "x,y" ? 2 : 3;
+        continue;
+      }
+    }
+    if (columns == 0) columns = static_cast<int>(fields.size());
+    if (static_cast<int>(fields.size()) != columns || (columns != 2 && columns != 3)) {
+      return Status::InvalidArgument(where + (columns == 3 ? "expected \"set,x,y\"" : "expected \"x,y\""));
+    }
+    size_t set = 0;
+    if (columns == 3) {
+      double s = 0;
+      if (!ParseNumber(fields[0], &s) || s < 0 || s != std::floor(s) || s > sets.size()) {
+        return Status::InvalidArgument(where + "the set column must count 0, 1, ... in order");
+      }
+      set = static_cast<size_t>(s);
+    }
+    Point2 p;
+    if (!ParseNumber(fields[columns - 2], &p.x) || !ParseNumber(fields[columns - 1], &p.y)) {
+      return Status::InvalidArgument(where + "expected two finite numbers x,y");
+    }
+    if (set == sets.size()) sets.emplace_back();
+    if (set + 1 != sets.size()) {
+      return Status::InvalidArgument(where + "the rows of each set must be together, sets in order");
+    }
+    sets.back().push_back(p);
+  }
+  return sets;
+}
+
+StatusOr<std::vector<PointSet>> ParseText(const std::string& data, const std::string& path) {
+  std::vector<PointSet> sets(1);
   std::istringstream lines(data);
   int line_no = 0;
   for (std::string line; std::getline(lines, line);) {
     ++line_no;
     const size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
+    if (first == std::string::npos) continue;
+    if (line[first] == '#') {
+      // UTK: a '#' line closes the set before it (if it has points).
+      if (!sets.back().empty()) sets.emplace_back();
+      continue;
+    }
     std::istringstream fields(line);
     Point2 p;
     std::string extra;
@@ -108,10 +332,64 @@ StatusOr<PointSet> ReadPointFile(const std::string& path) {
       return Status::InvalidArgument(path + ":" + std::to_string(line_no) +
                                      ": expected two finite numbers \"x y\"");
     }
-    pts.push_back(p);
+    sets.back().push_back(p);
   }
-  if (pts.empty()) return Status::InvalidArgument(path + ": no points");
-  return pts;
+  if (sets.back().empty()) sets.pop_back();
+  return sets;
+}
+
+}  // namespace
+
+bool IsStdStream(const std::string& path) { return path == "-"; }
+
+FILE* ReportStreamFor(const std::string& out_path) { return IsStdStream(out_path) ? stderr : stdout; }
+
+Status WritePointSets(const std::string& path, const std::vector<PointSet>& sets,
+                      const std::string& comment) {
+  if (path.empty()) return Status::InvalidArgument("output path is empty");
+  auto data = Serialize(path, sets, true, comment);
+  if (!data.ok()) return data.status();
+  return WriteAll(path, *data);
+}
+
+Status WritePointFile(const std::string& path, const PointSet& points, const std::string& comment) {
+  if (path.empty()) return Status::InvalidArgument("output path is empty");
+  auto data = Serialize(path, {points}, false, comment);
+  if (!data.ok()) return data.status();
+  return WriteAll(path, *data);
+}
+
+StatusOr<std::vector<PointSet>> ReadPointSets(const std::string& path) {
+  std::string data;
+  if (IsStdStream(path)) {
+    data.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return Status::InvalidArgument("cannot read " + path + ": " + std::strerror(errno));
+    data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const Format format = IsStdStream(path) ? Format::kText : FormatOf(path);
+  auto sets = format == Format::kNpy   ? ParseNpy(data, path)
+              : format == Format::kCsv ? ParseCsv(data, path)
+                                       : ParseText(data, path);
+  if (!sets.ok()) return sets.status();
+  if (sets->empty()) return Status::InvalidArgument(path + ": no points");
+  for (const PointSet& s : *sets) {
+    if (s.empty()) return Status::InvalidArgument(path + ": a set without points");
+  }
+  if (Status s = CheckInside(path, *sets); !s.ok()) return s;
+  return sets;
+}
+
+StatusOr<PointSet> ReadPointFile(const std::string& path) {
+  auto sets = ReadPointSets(path);
+  if (!sets.ok()) return sets.status();
+  if (sets->size() > 1) {
+    return Status::InvalidArgument(path + " holds " + std::to_string(sets->size()) +
+                                   " point sets ('#'-separated or (m, N, 2)); this command reads "
+                                   "one: split the file, or use a command that reads several");
+  }
+  return std::move(sets->front());
 }
 
 }  // namespace alignset::cli

@@ -1,4 +1,4 @@
-#include "client/service_client.h"
+#include "alignset/client.h"
 
 #include <grpcpp/grpcpp.h>
 
@@ -9,11 +9,14 @@
 #include <sstream>
 
 #include "alignset/v1/alignset.grpc.pb.h"
+#include "core/optimize/realization.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 
-namespace alignset::cli {
+namespace alignset {
 namespace {
 
+static_assert(SetRequest::kMaxRealization == kMaxRealization,
+              "the public header states the core's realization bound");
 static_assert(std::endian::native == std::endian::little,
               "the wire format is little-endian float64; add a byte swap for this host");
 
@@ -85,6 +88,7 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   i.learning_rate = md.parameters().learning_rate();
   i.sw_weight = md.parameters().sw_weight();
   i.seed = md.parameters().seed();
+  i.realization = md.key().realization();
   i.algorithm_version = md.parameters().algorithm_version();
   i.from_cache = md.from_cache();
   i.optimize_seconds = md.optimize_seconds();
@@ -169,14 +173,21 @@ struct ServiceClient::Impl {
   std::unique_ptr<v1::AlignSet::Stub> stub;
   std::unique_ptr<grpc::health::v1::Health::Stub> health;
 
-  void Prepare(grpc::ClientContext* ctx, bool unary) const {
+  // The token, and the deadline: the call's own, else (unary calls only)
+  // the connection's default.
+  void Prepare(grpc::ClientContext* ctx, bool unary, const CallOptions& call) const {
     if (!options.token.empty()) ctx->AddMetadata("authorization", "Bearer " + options.token);
-    if (unary && options.timeout_seconds > 0) {
+    const double timeout = call.timeout_seconds ? *call.timeout_seconds
+                           : unary              ? options.timeout_seconds
+                                                : 0.0;
+    if (timeout > 0) {
       ctx->set_deadline(std::chrono::system_clock::now() +
-                        std::chrono::microseconds(static_cast<int64_t>(options.timeout_seconds * 1e6)));
+                        std::chrono::microseconds(static_cast<int64_t>(timeout * 1e6)));
     }
   }
   Status Fail(const grpc::Status& s) const { return FromGrpc(s, options.address); }
+  StatusOr<std::vector<BatchItem>> Batch(const v1::AlignedSetsRequest& req,
+                                         const CallOptions& call) const;
 };
 
 ServiceClient::ServiceClient(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -213,10 +224,11 @@ StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOpt
 }
 
 namespace {
-v1::AlignedSetRequest MakeRequest(uint32_t n, const std::vector<double>& dirs) {
+v1::AlignedSetRequest MakeRequest(const SetRequest& r) {
   v1::AlignedSetRequest req;
-  req.set_n(n);
-  for (double d : dirs) req.add_directions_deg(d);
+  req.set_n(r.n);
+  for (double d : r.directions_deg) req.add_directions_deg(d);
+  req.set_realization(r.realization);
   return req;
 }
 
@@ -231,21 +243,86 @@ StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
 }
 }  // namespace
 
-StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs) {
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<double>& dirs,
+                                                  const CallOptions& call) {
+  return GetAlignedSet(SetRequest{n, dirs, 0}, call);
+}
+
+StatusOr<AlignedSet> ServiceClient::GetAlignedSet(const SetRequest& request,
+                                                  const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::AlignedSetResponse resp;
-  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(n, dirs), &resp);
+  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(request), &resp);
   if (!s.ok()) return impl_->Fail(s);
   return FromResponse(&resp);
 }
 
+namespace {
+// The status of one batch item, in the same form as a failed call's.
+Status ItemStatus(const v1::AlignedSetsItem& item, const std::string& address) {
+  return FromGrpc(grpc::Status(static_cast<grpc::StatusCode>(item.code()), item.message()), address);
+}
+}  // namespace
+
+StatusOr<std::vector<BatchItem>> ServiceClient::Impl::Batch(const v1::AlignedSetsRequest& req,
+                                                            const CallOptions& call) const {
+  grpc::ClientContext ctx;
+  Prepare(&ctx, true, call);
+  v1::AlignedSetsResponse resp;
+  grpc::Status s = stub->GetAlignedSets(&ctx, req, &resp);
+  if (!s.ok()) return Fail(s);
+  std::vector<BatchItem> out(static_cast<size_t>(resp.items_size()));
+  for (int i = 0; i < resp.items_size(); ++i) {
+    v1::AlignedSetsItem* item = resp.mutable_items(i);
+    if (item->code() != 0) {
+      out[i].status = ItemStatus(*item, options.address);
+      continue;
+    }
+    auto set = FromResponse(item->mutable_set());
+    if (!set.ok()) {
+      out[i].status = set.status();
+      continue;
+    }
+    out[i].set = std::move(set).value();
+  }
+  return out;
+}
+
+StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector<SetRequest>& items,
+                                                               const CallOptions& call) {
+  v1::AlignedSetsRequest req;
+  for (const SetRequest& r : items) *req.add_items() = MakeRequest(r);
+  auto out = impl_->Batch(req, call);
+  if (out.ok() && out->size() != items.size()) {
+    return Status::Internal("the server answered " + std::to_string(out->size()) + " items for " +
+                            std::to_string(items.size()));
+  }
+  return out;
+}
+
+StatusOr<std::vector<BatchItem>> ServiceClient::GetOneDirectionSpace(uint32_t n,
+                                                                     uint32_t realization,
+                                                                     const CallOptions& call) {
+  v1::AlignedSetsRequest req;
+  req.set_space(v1::ONE_DIRECTION);
+  req.set_space_n(n);
+  req.set_space_realization(realization);
+  return impl_->Batch(req, call);
+}
+
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     uint32_t n, const std::vector<double>& dirs,
-    const std::function<void(const WatchUpdate&)>& on_update) {
+    const std::function<void(const WatchUpdate&)>& on_update, const CallOptions& call) {
+  return WatchAlignedSet(SetRequest{n, dirs, 0}, on_update, call);
+}
+
+StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
+    const SetRequest& request, const std::function<void(const WatchUpdate&)>& on_update,
+    const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false);
-  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(n, dirs));
+  impl_->Prepare(&ctx, false, call);
+  auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(request));
   v1::WatchEvent ev;
   std::optional<StatusOr<AlignedSet>> result;
   while (reader->Read(&ev)) {
@@ -275,7 +352,8 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
 }
 
 StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
-    const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update) {
+    const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update,
+    const CallOptions& call) {
   v1::PrecomputeRequest req;
   for (uint32_t n : spec.n) req.add_n(n);
   switch (spec.space) {
@@ -292,8 +370,9 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   }
   req.set_shard_index(spec.shard_index);
   req.set_shard_count(spec.shard_count);
+  req.set_realizations(spec.realizations);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false);
+  impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->Precompute(&ctx, req);
   v1::PrecomputeProgress p;
   PrecomputeUpdate last;
@@ -307,23 +386,24 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
 }
 
 StatusOr<PointSet> ServiceClient::GetSamples(const std::string& sampler, uint32_t n, uint64_t seed,
-                                             std::optional<double> shear_deg) {
+                                             std::optional<double> shear_deg,
+                                             const CallOptions& call) {
   v1::SamplesRequest req;
   req.set_sampler(sampler);
   req.set_n(n);
   req.set_seed(seed);
   if (shear_deg) req.set_shear_deg(*shear_deg);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::SamplesResponse resp;
   grpc::Status s = impl_->stub->GetSamples(&ctx, req, &resp);
   if (!s.ok()) return impl_->Fail(s);
   return DecodePoints(resp.points(), resp.n());
 }
 
-StatusOr<CacheInfo> ServiceClient::GetCacheStats() {
+StatusOr<CacheInfo> ServiceClient::GetCacheStats(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::CacheStatsResponse resp;
   grpc::Status s = impl_->stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -338,9 +418,9 @@ StatusOr<CacheInfo> ServiceClient::GetCacheStats() {
   return c;
 }
 
-StatusOr<ServiceMetrics> ServiceClient::GetMetrics() {
+StatusOr<ServiceMetrics> ServiceClient::GetMetrics(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::MetricsResponse resp;
   grpc::Status s = impl_->stub->GetMetrics(&ctx, v1::MetricsRequest(), &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -348,13 +428,14 @@ StatusOr<ServiceMetrics> ServiceClient::GetMetrics() {
 }
 
 StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const std::string& profile,
-                                                               uint32_t limit) {
+                                                               uint32_t limit,
+                                                               const CallOptions& call) {
   v1::ListCachedSetsRequest req;
   req.set_n(n);
   req.set_profile(profile);
   req.set_limit(limit);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   v1::ListCachedSetsResponse resp;
   grpc::Status s = impl_->stub->ListCachedSets(&ctx, req, &resp);
   if (!s.ok()) return impl_->Fail(s);
@@ -366,9 +447,9 @@ StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const
   return out;
 }
 
-StatusOr<bool> ServiceClient::Healthy() {
+StatusOr<bool> ServiceClient::Healthy(const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true);
+  impl_->Prepare(&ctx, true, call);
   grpc::health::v1::HealthCheckRequest req;
   grpc::health::v1::HealthCheckResponse resp;
   grpc::Status s = impl_->health->Check(&ctx, req, &resp);
@@ -376,4 +457,4 @@ StatusOr<bool> ServiceClient::Healthy() {
   return resp.status() == grpc::health::v1::HealthCheckResponse::SERVING;
 }
 
-}  // namespace alignset::cli
+}  // namespace alignset

@@ -4,7 +4,7 @@
 #      machine, imported with podman as "debian:bookworm" (what the Dockerfile's FROM names);
 #      the rootfs tarball is cached under $ALIGNSET_CACHE_DIR (default ~/.cache/alignset);
 #   2. buildah bud --isolation chroot of deploy/Dockerfile (layers cached between runs);
-#   3. checks of the image config (non-root user, port, volume, health check);
+#   3. checks of the image config (non-root user, port, volume, health check, OCI labels);
 #   4. the server started from the image (buildah run, host network, loopback port), health
 #      SERVING asked from the host and with the image's own HEALTHCHECK command, an aligned
 #      set requested with the host CLI, the SQLite cache found on the volume, clean stop.
@@ -141,6 +141,7 @@ fi
 log "image built: $(pod image inspect --format '{{.Size}}' "$IMAGE" | awk '{printf "%.0f MB", $1/1e6}')"
 
 # --- 3. image configuration -------------------------------------------------------------
+VERSION="$(sed -n 's/^project(alignset VERSION \([0-9.]*\).*/\1/p' "$ROOT/CMakeLists.txt")"
 hc_cmd="$(bah inspect --type image "$IMAGE" | "$PY" -c '
 import json, sys
 cfg = json.load(sys.stdin)["Docker"]["config"]
@@ -152,14 +153,23 @@ if "50051/tcp" not in (cfg.get("ExposedPorts") or {}):
     errors.append("port 50051 not exposed")
 if "/var/lib/alignset" not in (cfg.get("Volumes") or {}):
     errors.append("no volume at /var/lib/alignset")
+labels = cfg.get("Labels") or {}
+oci = "org.opencontainers.image."
+for key in ("title", "description", "version", "source", "licenses"):
+    if oci + key not in labels:
+        errors.append("no %s%s label" % (oci, key))
+if labels.get(oci + "version") != sys.argv[1]:
+    errors.append("version label %r, project version %r" % (labels.get(oci + "version"), sys.argv[1]))
+if labels.get(oci + "licenses") != "Apache-2.0":
+    errors.append("licenses label %r" % labels.get(oci + "licenses"))
 hc = (cfg.get("Healthcheck") or {}).get("Test") or []
 if "health" not in " ".join(hc):
     errors.append("no gRPC health check (Healthcheck=%r)" % hc)
 if errors:
     sys.exit("image config: " + "; ".join(errors))
 print(hc[1] if hc[0] == "CMD-SHELL" else " ".join(hc[1:]))
-')" || die "image configuration check failed"
-log "image config ok (user non-root, 50051 exposed, volume, HEALTHCHECK)"
+' "$VERSION")" || die "image configuration check failed"
+log "image config ok (user non-root, 50051 exposed, volume, HEALTHCHECK, OCI labels of $VERSION)"
 
 # --- 4. run the image -------------------------------------------------------------------
 ctr="$(bah from --pull=never "$IMAGE")"

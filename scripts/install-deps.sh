@@ -1,18 +1,37 @@
 #!/usr/bin/env bash
-# Installs every build, test and plotting dependency from Debian 12 packages.
-# Idempotent: packages already present are skipped by apt-get.
+# Installs alignset's dependencies from Debian 12 packages. Idempotent: packages
+# already present are skipped.
+#
+#   scripts/install-deps.sh          what building and running alignset needs (the
+#                                    quickstart, the container image's build stage)
+#   scripts/install-deps.sh --test   that, plus what the test suite, the benchmarks,
+#                                    the plots and the container test need (scripts/test.sh)
 set -euo pipefail
 
-PACKAGES=(
+# Compilers and the libraries the CLI, the server and the client library link.
+BUILD_PACKAGES=(
   build-essential cmake ninja-build pkg-config git ca-certificates
-  libgtest-dev libgmock-dev libbenchmark-dev
   libeigen3-dev libfftw3-dev
-  libsqlite3-dev sqlite3
+  libsqlite3-dev
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
-  libspdlog-dev libfmt-dev openssl
-  python3 python3-numpy python3-matplotlib
+  libspdlog-dev libfmt-dev libcli11-dev
+)
+# GoogleTest and Google Benchmark, the tools the tests drive (sqlite3, openssl for the TLS
+# test), Python with the packages of the Python client, its test, the plots and the
+# manifest check, and the daemon-less container build of deploy/test-container.sh.
+TEST_PACKAGES=(
+  libgtest-dev libgmock-dev libbenchmark-dev
+  sqlite3 openssl
+  python3 python3-numpy python3-matplotlib python3-yaml python3-grpcio python3-protobuf
+  python3-grpc-tools
   yamllint buildah podman debootstrap
 )
+
+case "${1:-}" in
+  "") PACKAGES=("${BUILD_PACKAGES[@]}") ;;
+  --test) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
+  *) echo "usage: $0 [--test]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do

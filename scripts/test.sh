@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# The test command: installs dependencies, builds, runs the whole test suite:
+# The test command: installs the build and test dependencies, builds everything, runs
+# the whole test suite:
 # the GoogleTest suites (core, storage, server, end-to-end over loopback), the
 # Kubernetes manifest checks, and, as root, the real container image build and
 # run (deploy/test-container.sh). ALIGNSET_SKIP_CONTAINER=1 leaves the image
 # test out (it needs root and takes minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
+bash scripts/install-deps.sh --test
+# Tests and benchmarks on, also in a build directory the quickstart configured without them.
+bash scripts/build.sh -DALIGNSET_BUILD_TESTS=ON -DALIGNSET_BUILD_BENCH=ON
 BUILD_DIR="${BUILD_DIR:-build}"
 (cd "$BUILD_DIR" && ctest -j "${JOBS:-$(nproc)}" --output-on-failure --timeout 900)
 

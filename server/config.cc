@@ -102,6 +102,10 @@ std::string ServerUsage() {
   for (const Flag& f : Flags()) {
     u += "  --" + std::string(f.name) + " " + f.help + "  [" + EnvName(f.name) + "]\n";
   }
+  u += "  -h, --help            this text\n"
+       "  -V, --version         release, algorithm version and default profile id\n"
+       "\nExit status: 0 after a clean stop (SIGTERM, SIGINT); 1 when the server cannot start\n"
+       "(the address is taken, the cache cannot be opened); 2 usage (an unknown flag, a bad value).\n";
   return u;
 }
 

@@ -4,11 +4,20 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "server/config.h"
 #include "server/server.h"
+#include "storage/profile.h"
 
 int main(int argc, char** argv) {
+  // --version wins over every other flag, as --help does.
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--version") || !std::strcmp(argv[i], "-V")) {
+      std::puts(alignset::storage::VersionText("alignset-server", ALIGNSET_VERSION).c_str());
+      return 0;
+    }
+  }
   auto config = alignset::server::ParseServerConfig(argc - 1, argv + 1, [](const char* name) {
     return static_cast<const char*>(std::getenv(name));
   });

@@ -4,6 +4,8 @@
 
 #include <ctime>
 
+#include "core/optimize/realization.h"
+
 namespace alignset::server {
 
 using Clock = std::chrono::steady_clock;
@@ -121,8 +123,9 @@ std::string Scheduler::ProfileFor(uint32_t n) const {
   return p;
 }
 
-storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs) const {
-  return storage::SetKey{n, dirs, ProfileFor(n)};
+storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs,
+                                  uint32_t realization) const {
+  return storage::SetKey{n, dirs, ProfileFor(n), realization};
 }
 
 StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
@@ -273,7 +276,7 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
   problem.n = key.n;
   problem.directions = {static_cast<double>(key.dirs.phi1)};
   if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
-  problem.seed = options_.seed;
+  problem.seed = RealizationSeed(options_.seed, key.realization);
   metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
   spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),
                EffectiveMaxIterations(options_.optimizer, key.n, key.dirs.count));

@@ -107,8 +107,10 @@ class Scheduler {
   ~Scheduler();
 
   // The key of N points with canonical directions `dirs` under this server's
-  // optimization profile.
-  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs) const;
+  // optimization profile; `realization` picks one of the key's independent
+  // sets (optimized from RealizationSeed(seed, realization)).
+  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs,
+                         uint32_t realization = 0) const;
   std::string ProfileFor(uint32_t n) const;
   const Options& options() const { return options_; }
 

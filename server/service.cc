@@ -7,6 +7,7 @@
 #include <deque>
 #include <thread>
 
+#include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
 #include "server/samples.h"
 #include "server/validation.h"
@@ -106,6 +107,7 @@ void AlignSetService::FillKey(const storage::SetKey& key, v1::CanonicalKey* out)
   out->set_profile(key.profile);
   if (auto index = CanonicalKeyIndex(key.dirs); index.ok()) out->set_index(*index);
   out->set_text(KeyString(key));
+  out->set_realization(key.realization);
 }
 
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
@@ -133,7 +135,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_max_iterations(EffectiveMaxIterations(opt, key.n, key.dirs.count));
   p->set_learning_rate(opt.learning_rate);
   p->set_sw_weight(EffectiveSwWeight(opt, key.n));
-  p->set_seed(scheduler_->options().seed);
+  p->set_seed(RealizationSeed(scheduler_->options().seed, key.realization));
   p->set_algorithm_version(storage::kAlgorithmVersion);
   md->set_from_cache(from_cache);
   md->set_optimize_seconds(rec.optimize_seconds);
@@ -149,7 +151,8 @@ grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return Invalid(canon.status(), "GetAlignedSet");
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key);
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "GetAlignedSet");
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive);
   if (!ticket.ok()) return ToGrpc(ticket.status());
   if (auto w = AwaitTicket(ctx, **ticket); !w.ok()) {
@@ -174,7 +177,8 @@ grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
   const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
   auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
   if (!canon.ok()) return Invalid(canon.status(), "WatchAlignedSet");
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key);
+  if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "WatchAlignedSet");
+  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive);
   if (!ticket.ok()) return ToGrpc(ticket.status());
   const Ticket& t = **ticket;
@@ -264,11 +268,15 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                                            " is not below the shard count " + std::to_string(shards)),
                    "Precompute");
   }
+  if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
+  const uint32_t realizations = std::max<uint32_t>(1, req->realizations());
   std::vector<storage::SetKey> items;
   size_t i = 0;
   for (uint32_t n : req->n()) {
     for (const auto& dirs : space) {
-      if (i++ % shards == req->shard_index()) items.push_back(scheduler_->KeyFor(n, dirs));
+      for (uint32_t r = 0; r < realizations; ++r) {
+        if (i++ % shards == req->shard_index()) items.push_back(scheduler_->KeyFor(n, dirs, r));
+      }
     }
   }
   spdlog::info("precompute: {} items (shard {}/{}) from {}", items.size(), req->shard_index(),

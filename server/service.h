@@ -25,6 +25,10 @@ class AlignSetService final : public v1::AlignSet::Service {
                              v1::AlignedSetResponse* resp) override;
   grpc::Status WatchAlignedSet(grpc::ServerContext* ctx, const v1::AlignedSetRequest* req,
                                grpc::ServerWriter<v1::WatchEvent>* writer) override;
+  // In server/service_batch.cc: a loop over the GetAlignedSet path, one
+  // status per item.
+  grpc::Status GetAlignedSets(grpc::ServerContext* ctx, const v1::AlignedSetsRequest* req,
+                              v1::AlignedSetsResponse* resp) override;
   grpc::Status Precompute(grpc::ServerContext* ctx, const v1::PrecomputeRequest* req,
                           grpc::ServerWriter<v1::PrecomputeProgress>* writer) override;
   grpc::Status GetSamples(grpc::ServerContext* ctx, const v1::SamplesRequest* req,

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/optimize/optimizer.h"
+#include "core/optimize/realization.h"
 
 namespace alignset::server {
 
@@ -40,6 +41,45 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
     }
   }
   return Canonicalize(directions_deg);
+}
+
+}  // namespace alignset::server
+
+namespace alignset::server {
+
+Status ValidateBatchSize(size_t items, uint64_t total_points) {
+  if (items == 0) return Status::InvalidArgument("the batch has no items");
+  if (items > kMaxBatchItems) {
+    return Status::InvalidArgument("the batch has " + std::to_string(items) + " items, above the " +
+                                   "maximum of " + std::to_string(kMaxBatchItems) +
+                                   " per call: split it");
+  }
+  if (total_points > kMaxBatchPoints) {
+    return Status::InvalidArgument("the batch asks for " + std::to_string(total_points) +
+                                   " points in all, above the maximum of " +
+                                   std::to_string(kMaxBatchPoints) + " per call: split it");
+  }
+  return Status::Ok();
+}
+
+}  // namespace alignset::server
+
+namespace alignset::server {
+
+Status ValidateRealization(uint32_t realization) {
+  if (realization > kMaxRealization) {
+    return Status::InvalidArgument("realization " + std::to_string(realization) +
+                                   " is above the maximum of " + std::to_string(kMaxRealization));
+  }
+  return Status::Ok();
+}
+
+Status ValidateRealizationCount(uint32_t count) {
+  if (count > kMaxRealization + 1) {
+    return Status::InvalidArgument("realizations = " + std::to_string(count) +
+                                   " is above the maximum of " + std::to_string(kMaxRealization + 1));
+  }
+  return Status::Ok();
 }
 
 }  // namespace alignset::server

@@ -19,3 +19,20 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
 Status ValidatePointCount(uint32_t n, uint32_t max_n);
 
 }  // namespace alignset::server
+
+namespace alignset::server {
+
+// The bounds of one GetAlignedSets call: at most this many items, and at most
+// this many points over all of them (256 MiB of response).
+inline constexpr size_t kMaxBatchItems = 256;
+inline constexpr uint64_t kMaxBatchPoints = uint64_t{1} << 24;
+
+// INVALID_ARGUMENT for an empty batch or one beyond the bounds above.
+Status ValidateBatchSize(size_t items, uint64_t total_points);
+
+// A realization index: 0 .. kMaxRealization (core/optimize/realization.h).
+Status ValidateRealization(uint32_t realization);
+// A precompute realization count: 0 (meaning 1) .. kMaxRealization + 1.
+Status ValidateRealizationCount(uint32_t count);
+
+}  // namespace alignset::server

@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 120,
+static_assert(sizeof(OptimizerOptions) == 240,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -52,6 +52,21 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "max_iterations", o.max_iterations);
   Field(t, "learning_rate", o.learning_rate);
   Field(t, "sw_weight", o.sw_weight);
+  Field(t, "weight_exponent", o.weighting.exponent);
+  Field(t, "weight_strip_exponent", o.weighting.strip_exponent);
+  Field(t, "weight_strip_scale", o.weighting.strip_scale);
+  Field(t, "weight_low_radius", o.weighting.low_radius);
+  Field(t, "weight_low_boost", o.weighting.low_boost);
+  Field(t, "warmup_exponent", o.warmup_weighting.exponent);
+  Field(t, "warmup_strip_exponent", o.warmup_weighting.strip_exponent);
+  Field(t, "warmup_strip_scale", o.warmup_weighting.strip_scale);
+  Field(t, "warmup_low_radius", o.warmup_weighting.low_radius);
+  Field(t, "warmup_low_boost", o.warmup_weighting.low_boost);
+  Field(t, "warmup_fraction", o.warmup_fraction);
+  Field(t, "stratify_axes", static_cast<int>(o.stratify_axes));
+  Field(t, "zero_radius", o.zero_radius);
+  Field(t, "final_margin", o.final_margin);
+  Field(t, "sw_arbitrary_scale", o.sw_arbitrary_scale);
   Field(t, "beta1", o.beta1);
   Field(t, "beta2", o.beta2);
   Field(t, "epsilon", o.epsilon);
@@ -75,6 +90,18 @@ std::string ProfileId(const FrequencyParams& params, const OptimizerOptions& opt
                 static_cast<unsigned long long>(
                     Hash64(ProfileText(params, options, seed, algorithm_version))));
   return hex;
+}
+
+}  // namespace alignset::storage
+
+namespace alignset::storage {
+
+std::string VersionText(const std::string& program, const std::string& release) {
+  constexpr uint32_t kHintN = 4096;
+  constexpr uint64_t kDefaultSeed = 1;  // alignset-server --seed
+  return program + " " + release + "\nalgorithm version " + std::to_string(kAlgorithmVersion) +
+         "\nprofile " + ProfileId(DefaultFrequencyParams(kHintN), OptimizerOptions{}, kDefaultSeed) +
+         " (default settings, N = " + std::to_string(kHintN) + "; format alignset-profile-v1)";
 }
 
 }  // namespace alignset::storage

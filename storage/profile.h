@@ -16,3 +16,13 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
                         uint64_t seed, int algorithm_version);
 
 }  // namespace alignset::storage
+
+namespace alignset::storage {
+
+// The --version text of alignset and alignset-server: the program and its
+// release, the algorithm version, and the profile id under which a server with
+// default settings caches N = 4096 sets (the same id `alignset stats` shows as
+// "profile (N=4096)").
+std::string VersionText(const std::string& program, const std::string& release);
+
+}  // namespace alignset::storage

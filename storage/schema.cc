@@ -32,6 +32,38 @@ CREATE TABLE sets (
 )sql"},
       {2, "index for listing one profile",
        "CREATE INDEX sets_by_profile ON sets (profile, n, dir_count, phi1, phi2);"},
+      // SQLite cannot change a primary key in place: the table is rebuilt,
+      // every existing row becoming realization 0 (the set it always was).
+      {3, "realization index in the key; existing sets are realization 0",
+       R"sql(
+CREATE TABLE sets_v3 (
+  n                 INTEGER NOT NULL CHECK (n > 0),
+  dir_count         INTEGER NOT NULL CHECK (dir_count IN (1, 2)),
+  phi1              INTEGER NOT NULL,
+  phi2              INTEGER NOT NULL,
+  realization       INTEGER NOT NULL DEFAULT 0 CHECK (realization >= 0),
+  profile           TEXT    NOT NULL,
+  loss_total        REAL    NOT NULL,
+  loss_spectrum     REAL    NOT NULL,
+  loss_sw           REAL    NOT NULL,
+  iterations        INTEGER NOT NULL,
+  optimize_seconds  REAL    NOT NULL,
+  engine            TEXT    NOT NULL,
+  created_unix      INTEGER NOT NULL,
+  algorithm_version INTEGER NOT NULL,
+  checksum          INTEGER NOT NULL,
+  points            BLOB    NOT NULL,
+  PRIMARY KEY (n, dir_count, phi1, phi2, realization, profile)
+);
+INSERT INTO sets_v3 (n, dir_count, phi1, phi2, realization, profile, loss_total, loss_spectrum,
+                     loss_sw, iterations, optimize_seconds, engine, created_unix,
+                     algorithm_version, checksum, points)
+  SELECT n, dir_count, phi1, phi2, 0, profile, loss_total, loss_spectrum, loss_sw, iterations,
+         optimize_seconds, engine, created_unix, algorithm_version, checksum, points FROM sets;
+DROP TABLE sets;
+ALTER TABLE sets_v3 RENAME TO sets;
+CREATE INDEX sets_by_profile ON sets (profile, n, dir_count, phi1, phi2, realization);
+)sql"},
   };
   return kMigrations;
 }

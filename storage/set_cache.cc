@@ -24,6 +24,10 @@ Status ValidateKey(const SetKey& key) {
     return Status::InvalidArgument("a key has 1 or 2 arbitrary directions, not " +
                                    std::to_string(d.count));
   }
+  if (key.realization > kMaxRealization) {
+    return Status::InvalidArgument("realization " + std::to_string(key.realization) +
+                                   " is above the maximum of " + std::to_string(kMaxRealization));
+  }
   if (key.profile.empty() || key.profile.size() > 64) {
     return Status::InvalidArgument("a profile id has 1 to 64 characters");
   }
@@ -45,6 +49,10 @@ std::string KeyToString(const SetKey& key) {
   if (key.dirs.count == 2) {
     s += ',';
     s += std::to_string(key.dirs.phi2);
+  }
+  if (key.realization > 0) {
+    s += " r=";
+    s += std::to_string(key.realization);
   }
   s += " profile=";
   s += key.profile;

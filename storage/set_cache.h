@@ -9,6 +9,7 @@
 #include "core/align/canonical.h"
 #include "core/spectral/frequency_set.h"
 #include "core/optimize/optimizer.h"
+#include "core/optimize/realization.h"
 #include "core/util/point_set.h"
 #include "core/util/status.h"
 
@@ -28,14 +29,18 @@ struct SetKey {
   uint32_t n = 0;
   CanonicalDirections dirs;
   std::string profile;
+  // Which of the key's independent sets (core/optimize/realization.h); 0 is
+  // the one every key always had.
+  uint32_t realization = 0;
   friend bool operator==(const SetKey&, const SetKey&) = default;
 };
 
 // Checks a key at the boundary: n in [kMinPoints, kMaxPoints]; count 1 with
 // phi1 in [0, 45] and phi2 == phi1, or count 2 with 0 <= phi1 <= phi2 < 180;
-// profile 1..64 characters of [A-Za-z0-9._-].
+// profile 1..64 characters of [A-Za-z0-9._-]; realization <= kMaxRealization.
 Status ValidateKey(const SetKey& key);
-// "n=4096 dirs=1:30 profile=0123456789abcdef", for messages and logs.
+// "n=4096 dirs=1:30 profile=0123456789abcdef", for messages and logs; a
+// realization r > 0 adds " r=R" before the profile.
 std::string KeyToString(const SetKey& key);
 
 struct SetRecord {
@@ -105,7 +110,8 @@ class SetCache {
   virtual StatusOr<SetRecord> Get(const SetKey& key) = 0;
   // Presence only: reads no blob and so does not verify it (Get does).
   virtual StatusOr<bool> Contains(const SetKey& key) = 0;
-  // Keys (optionally for one N / one profile), in (n, count, phi1, phi2) order.
+  // Keys (optionally for one N / one profile), in (n, count, phi1, phi2,
+  // realization) order.
   virtual StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n = std::nullopt,
                                              std::optional<std::string> profile = std::nullopt) = 0;
   // Like List, with each row's metadata. The default implementation is built

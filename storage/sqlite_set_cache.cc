@@ -38,13 +38,19 @@ namespace {
 
 // Column order of every full-row query; the blob is last (see schema.cc).
 constexpr const char* kColumns =
-    "n, dir_count, phi1, phi2, profile, loss_total, loss_spectrum, loss_sw, iterations, "
-    "optimize_seconds, engine, created_unix, algorithm_version, checksum, points";
-constexpr int kChecksumCol = 13;
-constexpr int kPointsCol = 14;
+    "n, dir_count, phi1, phi2, realization, profile, loss_total, loss_spectrum, loss_sw, "
+    "iterations, optimize_seconds, engine, created_unix, algorithm_version, checksum, points";
+// The same for a file from before schema version 3, whose sets are all
+// realization 0.
+constexpr const char* kColumnsBeforeRealizations =
+    "n, dir_count, phi1, phi2, 0, profile, loss_total, loss_spectrum, loss_sw, "
+    "iterations, optimize_seconds, engine, created_unix, algorithm_version, checksum, points";
+constexpr int kChecksumCol = 14;
+constexpr int kPointsCol = 15;
 constexpr const char* kKeyWhere =
-    " WHERE n = ?1 AND dir_count = ?2 AND phi1 = ?3 AND phi2 = ?4 AND profile = ?5";
-constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, profile";
+    " WHERE n = ?1 AND dir_count = ?2 AND phi1 = ?3 AND phi2 = ?4 AND realization = ?5"
+    " AND profile = ?6";
+constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, realization, profile";
 constexpr size_t kMaxEngineName = 64;
 
 void BindKey(Stmt& s, const SetKey& key) {
@@ -52,7 +58,8 @@ void BindKey(Stmt& s, const SetKey& key) {
   s.BindInt(2, key.dirs.count);
   s.BindInt(3, key.dirs.phi1);
   s.BindInt(4, key.dirs.phi2);
-  s.BindText(5, key.profile);
+  s.BindInt(5, key.realization);
+  s.BindText(6, key.profile);
 }
 
 SetKey KeyFromRow(const Stmt& s) {
@@ -62,21 +69,23 @@ SetKey KeyFromRow(const Stmt& s) {
   k.dirs.count = static_cast<int>(s.Int(1));
   k.dirs.phi1 = static_cast<int>(s.Int(2));
   k.dirs.phi2 = static_cast<int>(s.Int(3));
-  k.profile = s.Text(4);
+  const int64_t r = s.Int(4);
+  k.realization = (r < 0 || r > UINT32_MAX) ? UINT32_MAX : static_cast<uint32_t>(r);
+  k.profile = s.Text(5);
   return k;
 }
 
-// Columns 5..12 of kColumns.
+// Columns 6..13 of kColumns.
 template <typename T>
 void MetadataFromRow(const Stmt& s, T* out) {
-  out->loss.total = s.Double(5);
-  out->loss.spectrum = s.Double(6);
-  out->loss.sw = s.Double(7);
-  out->iterations = static_cast<int>(s.Int(8));
-  out->optimize_seconds = s.Double(9);
-  out->engine = s.Text(10);
-  out->created_unix = s.Int(11);
-  out->algorithm_version = static_cast<int>(s.Int(12));
+  out->loss.total = s.Double(6);
+  out->loss.spectrum = s.Double(7);
+  out->loss.sw = s.Double(8);
+  out->iterations = static_cast<int>(s.Int(9));
+  out->optimize_seconds = s.Double(10);
+  out->engine = s.Text(11);
+  out->created_unix = s.Int(12);
+  out->algorithm_version = static_cast<int>(s.Int(13));
 }
 
 // A whole row, checked: a key that fails validation, a checksum mismatch or
@@ -193,7 +202,7 @@ class SqliteSetCache final : public SetCache {
   StatusOr<std::vector<SetKey>> List(std::optional<uint32_t> n,
                                      std::optional<std::string> profile) override {
     std::lock_guard<std::mutex> lock(mu_);
-    auto stmt = Stmt::Prepare(db_.get(), "SELECT n, dir_count, phi1, phi2, profile FROM sets" +
+    auto stmt = Stmt::Prepare(db_.get(), "SELECT n, dir_count, phi1, phi2, realization, profile FROM sets" +
                                              Filter(n, profile) + kOrder);
     if (!stmt.ok()) return stmt.status();
     BindFilter(*stmt, n, profile);
@@ -213,8 +222,9 @@ class SqliteSetCache final : public SetCache {
     // is touched.
     auto stmt = Stmt::Prepare(
         db_.get(),
-        "SELECT n, dir_count, phi1, phi2, profile, loss_total, loss_spectrum, loss_sw, iterations, "
-        "optimize_seconds, engine, created_unix, algorithm_version, length(points) FROM sets" +
+        "SELECT n, dir_count, phi1, phi2, realization, profile, loss_total, loss_spectrum, "
+        "loss_sw, iterations, optimize_seconds, engine, created_unix, algorithm_version, "
+        "length(points) FROM sets" +
             Filter(n, profile) + kOrder);
     if (!stmt.ok()) return stmt.status();
     BindFilter(*stmt, n, profile);
@@ -226,7 +236,7 @@ class SqliteSetCache final : public SetCache {
       SetSummary s;
       s.key = KeyFromRow(*stmt);
       MetadataFromRow(*stmt, &s);
-      s.bytes = stmt->Int(13);
+      s.bytes = stmt->Int(14);
       out.push_back(std::move(s));
     }
   }
@@ -272,8 +282,9 @@ class SqliteSetCache final : public SetCache {
     if (!other.ok()) return other.status();
     auto version = SchemaVersion(*other);
     if (!version.ok()) return version.status();
-    // Every version so far has the same `sets` columns; a migration that
-    // changes them must teach this reader the older layouts.
+    // Versions 1 and 2 lack the realization column (their sets are
+    // realization 0); a later migration that changes the columns must teach
+    // this reader its layout too.
     if (*version < 1) return Status::InvalidArgument(other_path + " holds no alignset cache");
     if (*version > LatestSchemaVersion()) {
       return Status::InvalidArgument(other_path + " has schema version " + std::to_string(*version) +
@@ -281,7 +292,14 @@ class SqliteSetCache final : public SetCache {
     }
     auto tx = Transaction::Begin(*other, Transaction::Kind::kRead);
     if (!tx.ok()) return tx.status();
-    auto stmt = Stmt::Prepare(other->get(), std::string("SELECT ") + kColumns + " FROM sets" + kOrder);
+    const bool before_realizations = *version < 3;
+    auto stmt = Stmt::Prepare(other->get(), std::string("SELECT ") +
+                                                 (before_realizations ? kColumnsBeforeRealizations
+                                                                      : kColumns) +
+                                                 " FROM sets" +
+                                                 (before_realizations
+                                                      ? " ORDER BY n, dir_count, phi1, phi2, profile"
+                                                      : kOrder));
     if (!stmt.ok()) return stmt.status();
     MergeReport report;
     for (;;) {
@@ -358,19 +376,19 @@ class SqliteSetCache final : public SetCache {
     {
       auto stmt = Stmt::Prepare(db_.get(), std::string("INSERT OR REPLACE INTO sets (") + kColumns +
                                                ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, "
-                                               "?10, ?11, ?12, ?13, ?14, ?15)");
+                                               "?10, ?11, ?12, ?13, ?14, ?15, ?16)");
       if (!stmt.ok()) return stmt.status();
       BindKey(*stmt, r.key);
-      stmt->BindDouble(6, r.loss.total);
-      stmt->BindDouble(7, r.loss.spectrum);
-      stmt->BindDouble(8, r.loss.sw);
-      stmt->BindInt(9, r.iterations);
-      stmt->BindDouble(10, r.optimize_seconds);
-      stmt->BindText(11, r.engine);
-      stmt->BindInt(12, r.created_unix != 0 ? r.created_unix : static_cast<int64_t>(std::time(nullptr)));
-      stmt->BindInt(13, r.algorithm_version);
-      stmt->BindInt(14, crc);
-      stmt->BindBlob(15, blob);
+      stmt->BindDouble(7, r.loss.total);
+      stmt->BindDouble(8, r.loss.spectrum);
+      stmt->BindDouble(9, r.loss.sw);
+      stmt->BindInt(10, r.iterations);
+      stmt->BindDouble(11, r.optimize_seconds);
+      stmt->BindText(12, r.engine);
+      stmt->BindInt(13, r.created_unix != 0 ? r.created_unix : static_cast<int64_t>(std::time(nullptr)));
+      stmt->BindInt(14, r.algorithm_version);
+      stmt->BindInt(15, crc);
+      stmt->BindBlob(16, blob);
       Status s = stmt->Run();
       if (!s.ok()) return s;
     }

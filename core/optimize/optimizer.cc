@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/optimize/axis_stratification.h"
+#include "core/optimize/low_frequency_projection.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/optimize/sliced_wasserstein.h"
 
@@ -107,7 +109,31 @@ Status ValidateProblem(const OptimizationProblem& p) {
   for (double d : p.directions) {
     if (!std::isfinite(d)) return Status::InvalidArgument("direction must be a finite angle");
   }
+  if (p.start) {
+    if (p.start->size() != p.n) {
+      return Status::InvalidArgument("start set has " + std::to_string(p.start->size()) +
+                                     " points, expected " + std::to_string(p.n));
+    }
+    for (const Point2& q : *p.start) {
+      if (!(q.x >= 0.0 && q.x < 1.0 && q.y >= 0.0 && q.y < 1.0)) {
+        return Status::InvalidArgument("start set has a point outside [0,1)^2");
+      }
+    }
+  }
   if (p.frequency_params) return ValidateFrequencyParams(*p.frequency_params);
+  return Status::Ok();
+}
+
+static Status ValidateWeighting(const SpectrumWeighting& w) {
+  auto bad = [](double v, double lo, double hi) { return !std::isfinite(v) || v < lo || v > hi; };
+  if (bad(w.exponent, 0.0, 16.0)) return Status::InvalidArgument("weighting exponent must be in [0, 16]");
+  if (w.strip_exponent >= 0.0 && bad(w.strip_exponent, 0.0, 16.0)) {
+    return Status::InvalidArgument("strip exponent must be in [0, 16] (or negative: as exponent)");
+  }
+  if (bad(w.strip_scale, 1e-12, 1e12) || bad(w.low_boost, 1e-12, 1e12)) {
+    return Status::InvalidArgument("weighting scales must be in [1e-12, 1e12]");
+  }
+  if (bad(w.low_radius, 0.0, 1e6)) return Status::InvalidArgument("low radius must be >= 0");
   return Status::Ok();
 }
 
@@ -127,13 +153,28 @@ Status ValidateOptions(const OptimizerOptions& o) {
     return Status::InvalidArgument("plateau_factor must be in (0, 1]");
   }
   if (o.stall_iterations < 1) return Status::InvalidArgument("stall_iterations must be >= 1");
+  for (const SpectrumWeighting* w : {&o.weighting, &o.warmup_weighting}) {
+    if (Status s = ValidateWeighting(*w); !s.ok()) return s;
+  }
+  if (!(o.final_margin >= 0.0 && o.final_margin < 0.5)) {
+    return Status::InvalidArgument("final_margin must be in [0, 0.5)");
+  }
+  if (!(o.zero_radius >= 0.0 && o.zero_radius <= 16.0)) {
+    return Status::InvalidArgument("zero_radius must be in [0, 16]");
+  }
+  if (!(o.warmup_fraction >= 0.0 && o.warmup_fraction < 1.0)) {
+    return Status::InvalidArgument("warmup_fraction must be in [0, 1)");
+  }
   return Status::Ok();
 }
 
 LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
-                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine) {
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine,
+                       const SpectrumWeighting& weighting) {
   const std::vector<double> dirs = AnisotropyDirections(arbitrary_directions);
-  engine.SetFrequencies(BuildFrequencySet(params, dirs));
+  const std::vector<Frequency> k = BuildFrequencySet(params, dirs);
+  engine.SetFrequencies(k);
+  engine.SetLossWeights(SpectrumLossWeights(k, weighting, params, arbitrary_directions));
   SpectrumEvaluation eval;
   engine.Evaluate(points, false, &eval);
   SlicedWasserstein sw(static_cast<uint32_t>(points.size()), dirs);
@@ -156,98 +197,152 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
   result.frequency_count = k.size();
   engine.SetFrequencies(k);
-  const SlicedWasserstein sw(problem.n, dirs);
+  std::vector<double> sw_weights;
+  if (options.sw_arbitrary_scale != 1.0) {
+    sw_weights.assign(dirs.size(), options.sw_arbitrary_scale);
+    sw_weights[0] = sw_weights[1] = 1.0;  // the axes come first
+  }
+  const SlicedWasserstein sw(problem.n, dirs, sw_weights);
 
-  double lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
+  const double first_lr =
+      options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
   const double sw_weight = EffectiveSwWeight(options, problem.n);
   const int max_iterations = EffectiveMaxIterations(
       options, problem.n, static_cast<int>(problem.directions.size()));
 
-  // `accepted` is the state after the last accepted step; each step is tried
-  // in `trial`, and the two are swapped when it is accepted (no copies of
-  // the O(N) state per iteration).
-  AdamState accepted;
-  accepted.x = OwenScrambledSobol(problem.n, problem.seed);
-  accepted.m.assign(problem.n, {0.0, 0.0});
-  accepted.v.assign(problem.n, {0.0, 0.0});
+  // The phases: an optional warm-up weighting, then the main one.
+  struct Phase {
+    std::vector<double> weights;
+    int end_iteration;
+  };
+  std::vector<Phase> phases;
+  const std::vector<double> main_weights =
+      SpectrumLossWeights(k, options.weighting, result.frequency_params, problem.directions);
+  const int warmup_iterations =
+      static_cast<int>(std::lround(options.warmup_fraction * max_iterations));
+  if (warmup_iterations > 0 && warmup_iterations < max_iterations) {
+    phases.push_back({SpectrumLossWeights(k, options.warmup_weighting, result.frequency_params,
+                                          problem.directions),
+                      warmup_iterations});
+  }
+  phases.push_back({main_weights, max_iterations});
+
   SpectrumEvaluation scratch;
   std::vector<Point2> sw_grad;
-  EvaluateTotal(accepted.x, engine, sw, sw_weight, &scratch, &sw_grad, &accepted);
-  result.initial = accepted.loss;
+  // `initial` is reported under the main weighting, like `final_loss`.
+  PointSet x = problem.start ? *problem.start : OwenScrambledSobol(problem.n, problem.seed);
+  {
+    AdamState start;
+    engine.SetLossWeights(main_weights);
+    EvaluateTotal(x, engine, sw, sw_weight, &scratch, &sw_grad, &start);
+    result.initial = start.loss;
+  }
 
-  AdamState trial;
-  PointSet best = accepted.x;
-  LossTerms best_loss = accepted.loss;
-  double stall_reference = best_loss.total;
-  int since_improvement = 0;
+  AxisStratification stratification;
   StopReason reason = StopReason::kMaxIterations;
-
-  auto report = [&](int iteration) {
-    if (!progress) return true;
-    ProgressInfo info;
-    info.iteration = iteration;
-    info.max_iterations = max_iterations;
-    info.loss = accepted.loss.total;
-    info.spectrum_loss = accepted.loss.spectrum;
-    info.sw_loss = accepted.loss.sw;
-    info.best_loss = best_loss.total;
-    info.learning_rate = lr;
-    info.reverts = result.reverts;
-    return progress(info);
-  };
-
-  const double anneal_step = std::pow(options.anneal_ratio, 1.0 / max_iterations);
+  double lr = first_lr;
+  LossTerms best_loss;
   int it = 0;
-  while (it < max_iterations) {
-    ++it;
-    lr *= anneal_step;
-    AdamStep(accepted, options, lr, &trial);
-    EvaluateTotal(trial.x, engine, sw, sw_weight, &scratch, &sw_grad, &trial);
+  for (const Phase& phase : phases) {
+    engine.SetLossWeights(phase.weights);
+    // `accepted` is the state after the last accepted step; each step is
+    // tried in `trial`, and the two are swapped when it is accepted (no
+    // copies of the O(N) state per iteration).
+    AdamState accepted;
+    accepted.x = std::move(x);
+    accepted.m.assign(problem.n, {0.0, 0.0});
+    accepted.v.assign(problem.n, {0.0, 0.0});
+    EvaluateTotal(accepted.x, engine, sw, sw_weight, &scratch, &sw_grad, &accepted);
+    AdamState trial;
+    PointSet best = accepted.x;
+    best_loss = accepted.loss;
+    double stall_reference = best_loss.total;
+    int since_improvement = 0;
+    lr = first_lr;
+    reason = StopReason::kMaxIterations;
 
-    const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
-    const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
-    const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
-    const bool diverged =
-        !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
-    if (diverged) {
-      lr /= options.revert_divisor;
-      ++result.reverts;
-      if (lr < options.min_learning_rate) {
-        reason = StopReason::kLearningRateFloor;
+    auto report = [&](int iteration) {
+      if (!progress) return true;
+      ProgressInfo info;
+      info.iteration = iteration;
+      info.max_iterations = max_iterations;
+      info.loss = accepted.loss.total;
+      info.spectrum_loss = accepted.loss.spectrum;
+      info.sw_loss = accepted.loss.sw;
+      info.best_loss = best_loss.total;
+      info.learning_rate = lr;
+      info.reverts = result.reverts;
+      return progress(info);
+    };
+
+    const double anneal_step = std::pow(options.anneal_ratio, 1.0 / max_iterations);
+    while (it < phase.end_iteration) {
+      ++it;
+      lr *= anneal_step;
+      AdamStep(accepted, options, lr, &trial);
+      if (options.stratify_axes) stratification.Apply(&trial.x);
+      EvaluateTotal(trial.x, engine, sw, sw_weight, &scratch, &sw_grad, &trial);
+
+      const bool watch_total = options.divergence_signal == DivergenceSignal::kTotalLoss;
+      const double now = watch_total ? trial.loss.total : trial.loss.spectrum;
+      const double before = watch_total ? accepted.loss.total : accepted.loss.spectrum;
+      const bool diverged =
+          !std::isfinite(trial.loss.total) || now > (1.0 + options.divergence_threshold) * before;
+      if (diverged) {
+        lr /= options.revert_divisor;
+        ++result.reverts;
+        if (lr < options.min_learning_rate) {
+          reason = StopReason::kLearningRateFloor;
+          break;
+        }
+      } else {
+        std::swap(accepted, trial);
+        if (accepted.loss.total < best_loss.total) {
+          best_loss = accepted.loss;
+          best = accepted.x;
+        }
+        if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
+          stall_reference = best_loss.total;
+          since_improvement = 0;
+        } else if (++since_improvement >= options.stall_iterations) {
+          if (options.plateau_factor >= 1.0) {
+            reason = StopReason::kStalled;
+            break;
+          }
+          lr *= options.plateau_factor;
+          since_improvement = 0;
+          stall_reference = best_loss.total;
+          if (lr < options.min_learning_rate) {
+            reason = StopReason::kStalled;
+            break;
+          }
+        }
+      }
+      if (options.progress_every > 0 && it % options.progress_every == 0 && !report(it)) {
+        reason = StopReason::kCancelled;
         break;
       }
-    } else {
-      std::swap(accepted, trial);
-      if (accepted.loss.total < best_loss.total) {
-        best_loss = accepted.loss;
-        best = accepted.x;
-      }
-      if (best_loss.total < (1.0 - options.stall_tolerance) * stall_reference) {
-        stall_reference = best_loss.total;
-        since_improvement = 0;
-      } else if (++since_improvement >= options.stall_iterations) {
-        if (options.plateau_factor >= 1.0) {
-          reason = StopReason::kStalled;
-          break;
-        }
-        lr *= options.plateau_factor;
-        since_improvement = 0;
-        stall_reference = best_loss.total;
-        if (lr < options.min_learning_rate) {
-          reason = StopReason::kStalled;
-          break;
-        }
-      }
     }
-    if (options.progress_every > 0 && it % options.progress_every == 0 && !report(it)) {
-      reason = StopReason::kCancelled;
-      break;
-    }
+    x = std::move(best);
+    // A phase that stalls hands over to the next (which then has the rest of
+    // the budget); a cancel ends the run.
+    if (reason == StopReason::kCancelled) break;
+    if (&phase == &phases.back()) report(it);
   }
   result.iterations = it;
-  if (reason != StopReason::kCancelled) report(it);
-
-  result.points = std::move(best);
+  if ((options.zero_radius > 0.0 || options.final_margin > 0.0) &&
+      reason != StopReason::kCancelled) {
+    const std::vector<Frequency> low = LowFrequencies(options.zero_radius);
+    for (int round = 0; round < 3; ++round) {
+      ProjectLowFrequencies(&x, low, 2);
+      if (options.stratify_axes) stratification.Apply(&x, options.final_margin);
+    }
+    ProjectLowFrequencies(&x, low, 2);
+    AdamState projected;
+    EvaluateTotal(x, engine, sw, sw_weight, &scratch, &sw_grad, &projected);
+    best_loss = projected.loss;
+  }
+  result.points = std::move(x);
   result.final_loss = best_loss;
   result.final_learning_rate = lr;
   result.stop_reason = reason;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/optimize/spectrum_weights.h"
 #include "core/spectral/frequency_set.h"
 #include "core/util/point_set.h"
 #include "core/spectral/spectral_engine.h"
@@ -27,6 +28,9 @@ struct OptimizationProblem {
   uint64_t seed = 1;
   // Unset: DefaultFrequencyParams(n).
   std::optional<FrequencyParams> frequency_params;
+  // Unset: Owen-scrambled Sobol from `seed`. Set: continue from these n
+  // points (in [0,1)^2).
+  std::optional<PointSet> start;
 };
 
 // Which loss the revert-and-divide rule watches.
@@ -54,6 +58,28 @@ struct OptimizerOptions {
   // the SW term stratifies directly (README, "Choices"). sw_weight = 10
   // reproduces the literal reading.
   double sw_weight = 0.0;
+  // Weights of the spectrum loss over K (spectrum_weights.h); the default
+  // is flat, the supplement's mean.
+  SpectrumWeighting weighting;
+  // A first phase: `warmup_fraction` of the iteration budget with
+  // `warmup_weighting`; then the best set of that phase is optimized further
+  // with `weighting`, the Adam moments, learning rate and plateau rule
+  // restarted. 0 runs `weighting` alone.
+  SpectrumWeighting warmup_weighting;
+  double warmup_fraction = 0.0;
+  // Clamp every step onto the sets stratified along both axes
+  // (axis_stratification.h).
+  bool stratify_axes = false;
+  // After the last phase, the best set is projected onto F(v) = 0 for
+  // 0 < |v| <= zero_radius (low_frequency_projection.h), alternating with
+  // the axis clamp when stratify_axes is on. 0: no projection.
+  double zero_radius = 0.0;
+  // The final clamp keeps each axis coordinate within the central
+  // 1 - 2 margin of its stratum (0: anywhere in it).
+  double final_margin = 0.0;
+  // The SW terms of the arbitrary directions are weighted by this against
+  // those of the axes.
+  double sw_arbitrary_scale = 1.0;
   double beta1 = 0.9;
   double beta2 = 0.999;
   double epsilon = 1e-12;
@@ -154,6 +180,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
 
 // L_Spec, L_SW and the total of a given set (no gradient), for reporting.
 LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitrary_directions,
-                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine);
+                       const FrequencyParams& params, double sw_weight, SpectralEngine& engine,
+                       const SpectrumWeighting& weighting = {});
 
 }  // namespace alignset

@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "alignset/v1/alignset.grpc.pb.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "storage/set_cache.h"
 #include "tests/e2e/server_process.h"
@@ -20,8 +20,6 @@
 namespace alignset::e2e {
 namespace {
 
-using cli::ConnectOptions;
-using cli::ServiceClient;
 using namespace std::chrono_literals;
 
 // Small sets and few iterations keep every optimization in the tens of
@@ -54,10 +52,10 @@ class E2eTest : public ::testing::Test {
     return v1::AlignSet::NewStub(
         grpc::CreateCustomChannel(server_->address(), grpc::InsecureChannelCredentials(), args));
   }
-  cli::ServiceMetrics Metrics() {
+  ServiceMetrics Metrics() {
     auto m = Client()->GetMetrics();
     EXPECT_TRUE(m.ok()) << m.status().message();
-    return m.ok() ? *m : cli::ServiceMetrics{};
+    return m.ok() ? *m : ServiceMetrics{};
   }
 
   TempDir dir_;
@@ -121,7 +119,7 @@ TEST_F(E2eTest, ThirtyTwoConcurrentRequestsRunExactlyOneOptimization) {
   // Long enough (N = 512, 200 iterations) that the requests overlap it.
   StartServer({"--max-iterations", "200", "--workers", "2", "--threads-per-worker", "1"});
   constexpr int kClients = 32;
-  std::vector<StatusOr<cli::AlignedSet>> results(kClients, Status::Internal("not run"));
+  std::vector<StatusOr<AlignedSet>> results(kClients, Status::Internal("not run"));
   std::atomic<int> ready{0};
   std::vector<std::thread> threads;
   for (int i = 0; i < kClients; ++i) {
@@ -234,12 +232,12 @@ std::string IntegrityCheck(const std::string& db) {
 TEST_F(E2eTest, SigkillDuringPrecomputeLeavesAnIntactDatabaseAndTheRerunResumes) {
   const auto flags = With(kFast, {"--max-iterations", "100"});
   StartServer(flags);
-  cli::PrecomputeSpec spec;
+  PrecomputeSpec spec;
   spec.n = {128};
   spec.space = 1;  // the 46 one-direction keys
   const pid_t pid = server_->pid();
   std::atomic<bool> killed{false};
-  auto first = Client()->Precompute(spec, [&](const cli::PrecomputeUpdate& u) {
+  auto first = Client()->Precompute(spec, [&](const PrecomputeUpdate& u) {
     if (u.done >= 3 && !killed.exchange(true)) kill(pid, SIGKILL);
   });
   ASSERT_TRUE(killed.load());
@@ -323,7 +321,7 @@ TEST_F(E2eTest, FlippedByteInAStoredBlobIsDetectedAndTheSetRecomputed) {
 TEST_F(E2eTest, PrecomputeRerunRecomputesACorruptRowInsteadOfCountingItCached) {
   const auto flags = With(kFast, {"--max-iterations", "100"});
   StartServer(flags);
-  cli::PrecomputeSpec spec;
+  PrecomputeSpec spec;
   spec.n = {64};
   spec.space = 1;
   auto first = Client()->Precompute(spec, nullptr);
@@ -379,7 +377,7 @@ TEST_F(E2eTest, DeadlineStopsTheWaitAndTheAbandonedOptimizationIsCancelled) {
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), Status::Code::kDeadlineExceeded) << r.status().message();
   // Nobody else wanted the set: the optimization is stopped, nothing stored.
-  cli::ServiceMetrics m;
+  ServiceMetrics m;
   for (int i = 0; i < 100; ++i) {
     m = Metrics();
     if (m.optimizations_cancelled > 0) break;
@@ -398,7 +396,7 @@ TEST_F(E2eTest, WatchStreamsProgressThenTheSet) {
   int progress_events = 0;
   int last_iteration = -1;
   bool monotone = true;
-  auto set = Client()->WatchAlignedSet(1024, {33.0}, [&](const cli::WatchUpdate& u) {
+  auto set = Client()->WatchAlignedSet(1024, {33.0}, [&](const WatchUpdate& u) {
     if (u.queued) return;
     ++progress_events;
     monotone = monotone && u.iteration >= last_iteration;

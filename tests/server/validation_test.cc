@@ -126,3 +126,17 @@ TEST(CanonicalEntry, EncodesAlignedPointsAsLittleEndianPairs) {
 
 }  // namespace
 }  // namespace alignset::server
+
+namespace alignset::server {
+namespace {
+
+TEST(Validation, BatchSizeIsBounded) {
+  EXPECT_TRUE(ValidateBatchSize(1, 64).ok());
+  EXPECT_TRUE(ValidateBatchSize(kMaxBatchItems, kMaxBatchPoints).ok());
+  EXPECT_EQ(ValidateBatchSize(0, 0).code(), Status::Code::kInvalidArgument);
+  EXPECT_EQ(ValidateBatchSize(kMaxBatchItems + 1, 64).code(), Status::Code::kInvalidArgument);
+  EXPECT_EQ(ValidateBatchSize(2, kMaxBatchPoints + 1).code(), Status::Code::kInvalidArgument);
+}
+
+}  // namespace
+}  // namespace alignset::server

@@ -137,7 +137,7 @@ class RawDb {
   bool FlipBlobByte(const SetKey& key, size_t offset, uint8_t mask = 0x01) {
     sqlite3_stmt* s = nullptr;
     sqlite3_prepare_v2(db_, "SELECT points FROM sets WHERE n=?1 AND dir_count=?2 AND phi1=?3 "
-                            "AND phi2=?4 AND profile=?5", -1, &s, nullptr);
+                            "AND phi2=?4 AND profile=?5 AND realization=?6", -1, &s, nullptr);
     Bind(s, key);
     std::string blob;
     if (sqlite3_step(s) == SQLITE_ROW) {
@@ -151,10 +151,10 @@ class RawDb {
 
   bool SetBlob(const SetKey& key, const std::string& blob) {
     sqlite3_stmt* s = nullptr;
-    sqlite3_prepare_v2(db_, "UPDATE sets SET points = ?6 WHERE n=?1 AND dir_count=?2 AND phi1=?3 "
-                            "AND phi2=?4 AND profile=?5", -1, &s, nullptr);
+    sqlite3_prepare_v2(db_, "UPDATE sets SET points = ?7 WHERE n=?1 AND dir_count=?2 AND phi1=?3 "
+                            "AND phi2=?4 AND profile=?5 AND realization=?6", -1, &s, nullptr);
     Bind(s, key);
-    sqlite3_bind_blob(s, 6, blob.data(), static_cast<int>(blob.size()), SQLITE_TRANSIENT);
+    sqlite3_bind_blob(s, 7, blob.data(), static_cast<int>(blob.size()), SQLITE_TRANSIENT);
     const bool ok = sqlite3_step(s) == SQLITE_DONE && sqlite3_changes(db_) == 1;
     sqlite3_finalize(s);
     return ok;
@@ -167,6 +167,7 @@ class RawDb {
     sqlite3_bind_int(s, 3, key.dirs.phi1);
     sqlite3_bind_int(s, 4, key.dirs.phi2);
     sqlite3_bind_text(s, 5, key.profile.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_int64(s, 6, key.realization);
   }
   sqlite3* db_ = nullptr;
 };

@@ -1,0 +1,433 @@
+// The integrand family benchmark (issue: the low-frequency floor): the CP
+// variance of aligned optimized sets against Owen-scrambled Sobol (the mean of
+// `--scrambles` scrambles, same shifts) on every integrand of the family, at
+// several N and angles, with ratios and fitted slopes; optionally the exact
+// Eq. 18 variance beside the Monte Carlo figure.
+//
+//   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
+//       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
+//       [--p 0 --low-radius 0 --low-boost 1 --sw-weight 0 --iterations 0 --lr 0]
+//       [--cache DIR] [--out results.tsv]
+//
+// Step-type integrands (steps and the smoothed step) are averaged over
+// `--offsets` parallel edges at offsets spread over [-1/4, 1/4] along the
+// normal, as bench/quality.py does, so a figure is a property of the set and
+// not of one lucky edge position. Optimized sets and baseline figures are
+// cached in --cache (keyed by every option), so sweeps re-use them.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/analysis/exact_variance.h"
+#include "core/analysis/integrands.h"
+#include "core/analysis/variance.h"
+#include "core/optimize/optimizer.h"
+#include "core/sampling/owen_sobol.h"
+#include "core/spectral/fast_engine.h"
+#include "core/util/hash.h"
+
+namespace alignset {
+namespace {
+
+struct Options {
+  std::vector<uint32_t> n = {256, 1024, 4096};
+  std::vector<double> theta = {10, 30, 45};
+  double theta2 = NAN;
+  int seeds = 1;
+  int scrambles = 16;
+  int shifts = 2048;
+  int offsets = 8;
+  bool exact = false;
+  bool snap_axes = false;
+  // Experiment: a first stage with exponent p1 for `stage1` iterations, then
+  // the main options from its result.
+  double p1 = -1.0;
+  // Experiment: multipliers of the default strip length, width, disk radius.
+  double kl = 1.0, kw = 1.0, kr = 1.0;
+  int stage1 = 0;  // experiment: clamp each axis projection into its rank's stratum
+  int threads = 2;
+  OptimizerOptions opt;
+  std::string cache = "build/bench-cache";
+  std::string out;
+};
+
+std::vector<double> ParseList(const char* s) {
+  std::vector<double> v;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+bool ParseArgs(int argc, char** argv, Options* o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "integrand_family: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--n") {
+      o->n.clear();
+      for (double v : ParseList(next())) o->n.push_back(static_cast<uint32_t>(v));
+    } else if (a == "--theta") {
+      o->theta = ParseList(next());
+    } else if (a == "--theta2") {
+      o->theta2 = std::stod(next());
+    } else if (a == "--seeds") {
+      o->seeds = std::stoi(next());
+    } else if (a == "--scrambles") {
+      o->scrambles = std::stoi(next());
+    } else if (a == "--shifts") {
+      o->shifts = std::stoi(next());
+    } else if (a == "--offsets") {
+      o->offsets = std::stoi(next());
+    } else if (a == "--stratify") {
+      o->opt.stratify_axes = std::stoi(next()) != 0;
+    } else if (a == "--kl") {
+      o->kl = std::stod(next());
+    } else if (a == "--kw") {
+      o->kw = std::stod(next());
+    } else if (a == "--kr") {
+      o->kr = std::stod(next());
+    } else if (a == "--p1") {
+      o->p1 = std::stod(next());
+    } else if (a == "--stage1") {
+      o->stage1 = std::stoi(next());
+    } else if (a == "--snap-axes") {
+      o->snap_axes = true;
+    } else if (a == "--exact") {
+      o->exact = true;
+    } else if (a == "--threads") {
+      o->threads = std::stoi(next());
+    } else if (a == "--p") {
+      o->opt.weighting.exponent = std::stod(next());
+    } else if (a == "--ps") {
+      o->opt.weighting.strip_exponent = std::stod(next());
+    } else if (a == "--margin") {
+      o->opt.final_margin = std::stod(next());
+    } else if (a == "--zero") {
+      o->opt.zero_radius = std::stod(next());
+    } else if (a == "--warmup") {
+      o->opt.warmup_fraction = std::stod(next());
+    } else if (a == "--wp") {
+      o->opt.warmup_weighting.exponent = std::stod(next());
+    } else if (a == "--swa") {
+      o->opt.sw_arbitrary_scale = std::stod(next());
+    } else if (a == "--ss") {
+      o->opt.weighting.strip_scale = std::stod(next());
+    } else if (a == "--low-radius") {
+      o->opt.weighting.low_radius = std::stod(next());
+    } else if (a == "--low-boost") {
+      o->opt.weighting.low_boost = std::stod(next());
+    } else if (a == "--sw-weight") {
+      o->opt.sw_weight = std::stod(next());
+    } else if (a == "--iterations") {
+      o->opt.max_iterations = std::stoi(next());
+    } else if (a == "--lr") {
+      o->opt.learning_rate = std::stod(next());
+    } else if (a == "--cache") {
+      o->cache = next();
+    } else if (a == "--out") {
+      o->out = next();
+    } else if (a == "--help" || a == "-h") {
+      std::printf(
+          "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
+          "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
+          "  [--low-radius R] [--low-boost B] [--sw-weight C] [--iterations I] [--lr LR]\n"
+          "  [--cache DIR] [--out FILE.tsv]\n");
+      std::exit(0);
+    } else {
+      std::fprintf(stderr, "integrand_family: unknown option %s (try --help)\n", a.c_str());
+      return false;
+    }
+  }
+  return true;
+}
+
+// One family member: a name and the integrands it averages over.
+struct Member {
+  std::string name;
+  std::vector<std::unique_ptr<Integrand>> parts;
+};
+
+std::vector<Member> Family(double theta, double theta2, int offsets) {
+  auto offset_at = [&](int e) { return offsets == 1 ? 0.0 : 0.5 * (e + 0.5) / offsets - 0.25; };
+  std::vector<Member> family;
+  auto steps = [&](const std::string& name, double deg) {
+    Member m{name, {}};
+    for (int e = 0; e < offsets; ++e) m.parts.push_back(StepEdge(deg, offset_at(e)));
+    family.push_back(std::move(m));
+  };
+  auto single = [&](const std::string& name, const std::string& spec) {
+    Member m{name, {}};
+    m.parts.push_back(std::move(MakeIntegrand(spec)).value());
+    family.push_back(std::move(m));
+  };
+  steps("step theta", theta);
+  if (!std::isnan(theta2)) steps("step theta2", theta2);
+  steps("step 0", 0.0);
+  steps("step 90", 90.0);
+  steps("step theta+45", ReduceDirection(theta + 45.0));
+  {
+    Member m{"smoothstep theta", {}};
+    for (int e = 0; e < offsets; ++e) m.parts.push_back(SmoothedStep(theta, 0.1, offset_at(e)));
+    family.push_back(std::move(m));
+  }
+  single("disk", "disk");
+  single("triangle", "triangle");
+  single("gaussian", "gaussian");
+  single("product", "product");
+  return family;
+}
+
+double MemberVariance(const PointSet& points, const Member& m, int shifts) {
+  double v = 0.0;
+  for (const auto& f : m.parts) {
+    const Integrand& g = *f;
+    v += CranleyPattersonVariance(
+             points, [&](const Point2& p) { return g.Value(p); }, g.Integral(), shifts, 12345)
+             .variance;
+  }
+  return v / static_cast<double>(m.parts.size());
+}
+
+// Runs fn(i) for i in [0, count) on `threads` threads.
+template <typename Fn>
+void Parallel(size_t count, int threads, Fn fn) {
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> pool;
+  for (int t = 0; t < std::max(1, threads); ++t) {
+    pool.emplace_back([&] {
+      for (size_t i; (i = next.fetch_add(1)) < count;) fn(i);
+    });
+  }
+  for (auto& th : pool) th.join();
+}
+
+std::string Key(const Options& o, uint32_t n, double theta, int seed) {
+  std::ostringstream s;
+  s.precision(17);
+  const OptimizerOptions& p = o.opt;
+  s << "n=" << n << ";t=" << theta << ";t2=" << o.theta2 << ";seed=" << seed
+    << ";p=" << p.weighting.exponent << ";lr0=" << p.weighting.low_radius
+    << ";lb=" << p.weighting.low_boost << ";ps=" << p.weighting.strip_exponent << ";ss=" << p.weighting.strip_scale << ";sw=" << p.sw_weight << ";it=" << p.max_iterations
+    << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
+    << ";wp=" << p.warmup_weighting.exponent << ";swa=" << p.sw_arbitrary_scale << ";p1=" << o.p1 << ";s1=" << o.stage1 << ";k=" << o.kl << "," << o.kw << "," << o.kr
+    << ";v=3";
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(Mix64(h)));
+  return hex;
+}
+
+bool LoadSet(const std::string& path, uint32_t n, PointSet* out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  out->resize(n);
+  in.read(reinterpret_cast<char*>(out->data()), n * sizeof(Point2));
+  return static_cast<size_t>(in.gcount()) == n * sizeof(Point2);
+}
+
+void SaveSet(const std::string& path, const PointSet& p) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(p.data()), p.size() * sizeof(Point2));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+// The aligned set for (n, theta, seed), optimized or from the cache; the
+// optimization's wall time goes into *seconds when it ran.
+PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double* seconds) {
+  const std::string path = o.cache + "/set-" + Key(o, n, theta, seed) + ".bin";
+  PointSet points;
+  if (LoadSet(path, n, &points)) {
+    std::printf("# cached %s\n", path.c_str());
+    return points;
+  }
+  OptimizationProblem problem;
+  problem.n = n;
+  problem.directions = {theta};
+  if (!std::isnan(o.theta2)) problem.directions.push_back(o.theta2);
+  problem.seed = static_cast<uint64_t>(seed);
+  if (o.kl != 1.0 || o.kw != 1.0 || o.kr != 1.0) {
+    FrequencyParams fp = DefaultFrequencyParams(n);
+    problem.frequency_params = FrequencyParams{fp.length * o.kl, fp.width * o.kw, fp.radius * o.kr};
+  }
+  FastEngine engine(o.threads);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (o.stage1 > 0) {
+    OptimizerOptions first = o.opt;
+    first.weighting.exponent = o.p1;
+    first.weighting.strip_exponent = -1.0;
+    first.max_iterations = o.stage1;
+    auto r1 = Optimize(problem, first, engine);
+    if (!r1.ok()) {
+      std::fprintf(stderr, "integrand_family: %s\n", r1.status().message().c_str());
+      std::exit(1);
+    }
+    problem.start = r1->points;
+  }
+  auto result = Optimize(problem, o.opt, engine);
+  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!result.ok()) {
+    std::fprintf(stderr, "integrand_family: %s\n", result.status().message().c_str());
+    std::exit(1);
+  }
+  std::printf("# optimized N=%u theta=%g seed=%d: %d iterations (%s), %d reverts, loss %.4g "
+              "(spectrum %.4g, sw %.4g) in %.2f s -> %s\n",
+              n, theta, seed, result->iterations, StopReasonName(result->stop_reason).c_str(),
+              result->reverts, result->final_loss.total, result->final_loss.spectrum,
+              result->final_loss.sw, *seconds, path.c_str());
+  SaveSet(path, result->points);
+  return result->points;
+}
+
+// Owen-Sobol's mean variance over the scrambles, cached per (n, member
+// name + theta, shifts, offsets, scrambles).
+double OwenSobolVariance(const Options& o, uint32_t n, double theta, const Member& m) {
+  std::ostringstream key;
+  key << "owen n=" << n << " t=" << theta << " t2=" << o.theta2 << " m=" << m.name
+      << " shifts=" << o.shifts << " offsets=" << o.offsets << " scrambles=" << o.scrambles;
+  const std::string index = o.cache + "/baseline.txt";
+  {
+    std::ifstream in(index);
+    std::string line;
+    while (std::getline(in, line)) {
+      const size_t tab = line.find('\t');
+      if (tab != std::string::npos && line.substr(0, tab) == key.str()) {
+        return std::stod(line.substr(tab + 1));
+      }
+    }
+  }
+  std::vector<double> v(static_cast<size_t>(o.scrambles));
+  Parallel(v.size(), o.threads, [&](size_t s) {
+    v[s] = MemberVariance(OwenScrambledSobol(n, 1000 + s), m, o.shifts);
+  });
+  double mean = 0.0;
+  for (double x : v) mean += x / static_cast<double>(v.size());
+  std::ofstream out(index, std::ios::app);
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.10e", mean);
+  out << key.str() << '\t' << buf << '\n';
+  return mean;
+}
+
+int Run(const Options& o) {
+  std::filesystem::create_directories(o.cache);
+  std::FILE* tsv = o.out.empty() ? nullptr : std::fopen(o.out.c_str(), "w");
+  if (tsv) std::fprintf(tsv, "theta\tn\tintegrand\taligned\towen_sobol\tratio\n");
+  std::printf("# weighting p=%g strip p=%g scale %g low_radius=%g low_boost=%g sw=%g iterations=%d; %d seed(s), "
+              "Owen-Sobol mean of %d scrambles, %d shifts, %d edge offsets\n",
+              o.opt.weighting.exponent, o.opt.weighting.strip_exponent, o.opt.weighting.strip_scale, o.opt.weighting.low_radius, o.opt.weighting.low_boost,
+              o.opt.sw_weight, o.opt.max_iterations, o.seeds, o.scrambles, o.shifts, o.offsets);
+  double worst_ratio = 0.0;
+  for (double theta : o.theta) {
+    const std::vector<Member> family = Family(theta, o.theta2, o.offsets);
+    std::map<std::string, std::vector<double>> aligned_by_member, owen_by_member;
+    for (uint32_t n : o.n) {
+      std::vector<PointSet> sets;
+      double opt_seconds = 0.0;
+      for (int s = 1; s <= o.seeds; ++s) {
+        double t = 0.0;
+        sets.push_back(AlignedSet(o, n, theta, s, &t));
+        if (o.snap_axes) {
+          for (int axis = 0; axis < 2; ++axis) {
+            std::vector<uint32_t> order(n);
+            for (uint32_t i = 0; i < n; ++i) order[i] = i;
+            auto coord = [&](uint32_t i) -> double& {
+              return axis == 0 ? sets.back()[i].x : sets.back()[i].y;
+            };
+            std::sort(order.begin(), order.end(),
+                      [&](uint32_t a, uint32_t b) { return coord(a) < coord(b); });
+            for (uint32_t r = 0; r < n; ++r) {
+              double& c = coord(order[r]);
+              c = std::clamp(c, static_cast<double>(r) / n, std::nextafter((r + 1.0) / n, 0.0));
+            }
+          }
+        }
+        opt_seconds += t;
+      }
+      std::vector<double> aligned(family.size(), 0.0);
+      std::vector<std::pair<size_t, size_t>> jobs;
+      for (size_t m = 0; m < family.size(); ++m)
+        for (size_t s = 0; s < sets.size(); ++s) jobs.push_back({m, s});
+      std::vector<double> values(jobs.size());
+      Parallel(jobs.size(), o.threads, [&](size_t j) {
+        values[j] = MemberVariance(sets[jobs[j].second], family[jobs[j].first], o.shifts);
+      });
+      for (size_t j = 0; j < jobs.size(); ++j) aligned[jobs[j].first] += values[j] / sets.size();
+      std::printf("\ntheta %g%s  N %u%s\n", theta,
+                  std::isnan(o.theta2) ? "" : (" + " + std::to_string(o.theta2)).c_str(), n,
+                  opt_seconds > 0 ? (" (optimized in " + std::to_string(opt_seconds) + " s)").c_str()
+                                  : "");
+      std::printf("  %-16s %12s %12s %8s%s\n", "integrand", "aligned", "owen-sobol", "ratio",
+                  o.exact ? "   exact(aligned) exact(owen[0]) tail%" : "");
+      std::unique_ptr<DiskSpectrum> spectrum_aligned, spectrum_owen;
+      if (o.exact) {
+        FastEngine engine(o.threads);
+        spectrum_aligned = std::make_unique<DiskSpectrum>(ComputeDiskSpectrum(sets[0], 256, engine));
+        spectrum_owen = std::make_unique<DiskSpectrum>(
+            ComputeDiskSpectrum(OwenScrambledSobol(n, 1000), 256, engine));
+      }
+      for (size_t m = 0; m < family.size(); ++m) {
+        const double owen = OwenSobolVariance(o, n, theta, family[m]);
+        const double ratio = aligned[m] / owen;
+        worst_ratio = std::max(worst_ratio, ratio);
+        aligned_by_member[family[m].name].push_back(aligned[m]);
+        owen_by_member[family[m].name].push_back(owen);
+        std::printf("  %-16s %12.4e %12.4e %8.3f", family[m].name.c_str(), aligned[m], owen,
+                    ratio);
+        if (o.exact && family[m].parts.size() == 1) {
+          const ExactVariance ea = ExactCpVariance(*spectrum_aligned, *family[m].parts[0]);
+          const ExactVariance eo = ExactCpVariance(*spectrum_owen, *family[m].parts[0]);
+          std::printf("   %12.4e %12.4e %5.1f", ea.variance, eo.variance,
+                      100.0 * ea.tail_estimate / ea.variance);
+        }
+        std::printf("\n");
+        if (tsv) {
+          std::fprintf(tsv, "%g\t%u\t%s\t%.6e\t%.6e\t%.4f\n", theta, n, family[m].name.c_str(),
+                       aligned[m], owen, ratio);
+        }
+      }
+    }
+    if (o.n.size() >= 2) {
+      std::vector<double> ns(o.n.begin(), o.n.end());
+      std::printf("\n  slopes over N (theta %g): %-16s %8s %8s\n", theta, "integrand", "aligned",
+                  "owen");
+      for (const Member& m : family) {
+        std::printf("  %37s %8.2f %8.2f\n", m.name.c_str(),
+                    LogLogSlope(ns, aligned_by_member[m.name]),
+                    LogLogSlope(ns, owen_by_member[m.name]));
+      }
+    }
+  }
+  std::printf("\nworst ratio %.3f\n", worst_ratio);
+  if (tsv) std::fclose(tsv);
+  return 0;
+}
+
+}  // namespace
+}  // namespace alignset
+
+int main(int argc, char** argv) {
+  alignset::Options o;
+  if (!alignset::ParseArgs(argc, argv, &o)) return 2;
+  return alignset::Run(o);
+}

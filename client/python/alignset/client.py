@@ -1,0 +1,156 @@
+"""The client: one gRPC channel to alignset-server, points as NumPy arrays."""
+
+import dataclasses
+
+import grpc
+import numpy as np
+
+from alignset.v1 import alignset_pb2 as pb
+from alignset.v1 import alignset_pb2_grpc as pb_grpc
+
+DEFAULT_SERVER = "127.0.0.1:50051"
+
+
+class AlignSetError(Exception):
+    """A refused or failed call (or batch item): `code` is a grpc.StatusCode."""
+
+    def __init__(self, code, message):
+        super().__init__("%s: %s" % (code.name, message))
+        self.code = code
+        self.message = message
+
+
+@dataclasses.dataclass
+class AlignedSet:
+    """A served set: `points` is an (N, 2) float64 array in [0, 1)^2;
+    `metadata` the server's alignset.v1.SetMetadata (served directions,
+    canonical key, swap / invert, losses, profile, from_cache, ...)."""
+
+    points: np.ndarray
+    metadata: object
+
+
+def _points(data, n):
+    # 16 bytes per point, little-endian float64, x0 y0 x1 y1 ...
+    if len(data) != 16 * n:
+        raise AlignSetError(grpc.StatusCode.INTERNAL,
+                            "%d bytes of points for n = %d" % (len(data), n))
+    return np.frombuffer(data, dtype="<f8").reshape(n, 2).copy()
+
+
+def _directions(directions):
+    if isinstance(directions, (int, float)):
+        return [float(directions)]
+    return [float(d) for d in directions]
+
+
+def _request(n, directions, realization=0):
+    return pb.AlignedSetRequest(n=int(n), directions_deg=_directions(directions),
+                                realization=int(realization))
+
+
+def _aligned(response):
+    return AlignedSet(_points(response.points, response.n), response.metadata)
+
+
+_CODES = {c.value[0]: c for c in grpc.StatusCode}
+
+
+class Client:
+    """A connection to alignset-server.
+
+    server: "host:port" (default 127.0.0.1:50051); timeout: default deadline of
+    each call in seconds (None: none; every method also takes its own);
+    token: sent as "authorization: Bearer <token>"; root_certificates: PEM
+    bytes to trust, which switches to TLS."""
+
+    def __init__(self, server=DEFAULT_SERVER, timeout=None, token=None, root_certificates=None):
+        options = [("grpc.max_receive_message_length", -1)]
+        if root_certificates is not None:
+            creds = grpc.ssl_channel_credentials(root_certificates=root_certificates)
+            self._channel = grpc.secure_channel(server, creds, options=options)
+        else:
+            self._channel = grpc.insecure_channel(server, options=options)
+        self._stub = pb_grpc.AlignSetStub(self._channel)
+        self._timeout = timeout
+        self._metadata = [("authorization", "Bearer " + token)] if token else None
+
+    def close(self):
+        self._channel.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _call(self, method, request, timeout):
+        try:
+            return method(request, timeout=self._timeout if timeout is None else timeout,
+                          metadata=self._metadata)
+        except grpc.RpcError as e:
+            raise AlignSetError(e.code(), e.details()) from None
+
+    def get_set(self, n, directions, realization=0, timeout=None):
+        """The aligned set for n points and one or two directions (degrees),
+        with its metadata. `realization` (0..63) picks one of the key's
+        independent sets; 0 is the key's first. Blocks while the server
+        optimizes a missing set."""
+        request = _request(n, directions, realization)
+        return _aligned(self._call(self._stub.GetAlignedSet, request, timeout))
+
+    def get(self, n, directions, realization=0, timeout=None):
+        """The points alone: an (n, 2) float64 array."""
+        return self.get_set(n, directions, realization, timeout).points
+
+    def get_many(self, items, timeout=None):
+        """Many sets in one call: items are (n, directions) or (n, directions,
+        realization) tuples. Returns one entry per item, in order: an
+        AlignedSet, or the AlignSetError of that item (not raised: the other
+        items stand)."""
+        request = pb.AlignedSetsRequest(items=[_request(*item) for item in items])
+        return self._batch(request, timeout)
+
+    def get_realizations(self, n, directions, count, timeout=None):
+        """Realizations 0..count-1 of one key as a (count, n, 2) array, in one
+        call (the server optimizes the missing ones in parallel)."""
+        results = self.get_many([(n, directions, r) for r in range(count)], timeout)
+        for r in results:
+            if isinstance(r, AlignSetError):
+                raise r
+        return np.stack([r.points for r in results])
+
+    def get_space(self, n, realization=0, timeout=None):
+        """The 46 canonical one-direction sets of n points (directions 0..45
+        degrees) as one (46, n, 2) array; every other direction is one of them
+        swapped and / or mirrored."""
+        request = pb.AlignedSetsRequest(space=pb.ONE_DIRECTION, space_n=int(n),
+                                        space_realization=int(realization))
+        results = self._batch(request, timeout)
+        for r in results:
+            if isinstance(r, AlignSetError):
+                raise r
+        return np.stack([r.points for r in results])
+
+    def _batch(self, request, timeout):
+        response = self._call(self._stub.GetAlignedSets, request, timeout)
+        out = []
+        for item in response.items:
+            if item.code != 0:
+                out.append(AlignSetError(_CODES.get(item.code, grpc.StatusCode.UNKNOWN), item.message))
+            else:
+                out.append(_aligned(item.set))
+        return out
+
+    def samples(self, sampler, n, seed=1, shear=None, timeout=None):
+        """A baseline sampler's set (alignset sample --list names them),
+        optionally sheared to a direction (degrees)."""
+        request = pb.SamplesRequest(sampler=sampler, n=int(n), seed=int(seed))
+        if shear is not None:
+            request.shear_deg = float(shear)
+        response = self._call(self._stub.GetSamples, request, timeout)
+        return _points(response.points, response.n)
+
+    def metrics(self, timeout=None):
+        """The server's counters (alignset.v1.MetricsResponse)."""
+        return self._call(self._stub.GetMetrics, pb.MetricsRequest(), timeout)

@@ -1,0 +1,56 @@
+// Fetches aligned sets from a running alignset-server through the installed
+// client library:  alignset_consumer HOST:PORT
+// Exit status 0 when every check holds; otherwise one line on stderr.
+#include <alignset/client.h>
+
+#include <cstdio>
+#include <string>
+
+namespace {
+
+int Fail(const std::string& what) {
+  std::fprintf(stderr, "alignset_consumer: %s\n", what.c_str());
+  return 1;
+}
+
+bool InUnitSquare(const alignset::PointSet& points) {
+  for (const alignset::Point2& p : points) {
+    if (!(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) return Fail("usage: alignset_consumer HOST:PORT");
+  alignset::ConnectOptions options;
+  options.address = argv[1];
+  auto client = alignset::ServiceClient::Connect(options);
+  if (!client.ok()) return Fail(client.status().ToString());
+
+  // One set, with a deadline of its own.
+  alignset::CallOptions call;
+  call.timeout_seconds = 60;
+  auto set = (*client)->GetAlignedSet(64, {30.0}, call);
+  if (!set.ok()) return Fail("GetAlignedSet: " + set.status().ToString());
+  if (set->points.size() != 64 || !InUnitSquare(set->points) || set->info.served_deg.size() != 1 ||
+      set->info.served_deg[0] != 30) {
+    return Fail("GetAlignedSet returned the wrong set");
+  }
+
+  // A batch: two good items and a bad one, each with its own status.
+  auto batch = (*client)->GetAlignedSets({{64, {30.0}}, {64, {120.0}}, {8, {30.0}}}, call);
+  if (!batch.ok()) return Fail("GetAlignedSets: " + batch.status().ToString());
+  if (batch->size() != 3 || !(*batch)[0].status.ok() || !(*batch)[1].status.ok() ||
+      (*batch)[2].status.code() != alignset::Status::Code::kInvalidArgument) {
+    return Fail("GetAlignedSets: wrong item statuses");
+  }
+  if ((*batch)[0].set.raw != set->raw || !(*batch)[1].set.info.swapped) {
+    return Fail("GetAlignedSets: wrong sets");
+  }
+  std::printf("alignset %s client: %zu points for %d deg (key %s), batch of %zu\n",
+              alignset::kClientVersion, set->points.size(), set->info.served_deg[0],
+              set->info.key_text.c_str(), batch->size());
+  return 0;
+}

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The installed package, as a user meets it (a CTest): installs the build into a
+# fresh prefix, builds tests/consumer against that prefix only, once with CMake's
+# find_package(alignset) and once with pkg-config, starts the installed
+# alignset-server on loopback and runs both consumers (and the installed Python
+# package) against it.
+#   run_consumer_test.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+BUILD="$1"
+SRC="$2"
+WORK="$(mktemp -d /tmp/alignset-consumer-XXXXXX)"
+SERVER_PID=""
+cleanup() {
+  if [ -n "$SERVER_PID" ]; then kill -TERM "$SERVER_PID" 2>/dev/null || true; wait "$SERVER_PID" 2>/dev/null || true; fi
+  rm -rf "$WORK"
+}
+trap cleanup EXIT
+fail() { echo "run_consumer_test: $*" >&2; exit 1; }
+
+PREFIX="$WORK/prefix"
+cmake --install "$BUILD" --prefix "$PREFIX" > "$WORK/install.log" || { cat "$WORK/install.log"; fail "install failed"; }
+for f in include/alignset/client.h include/alignset/status.h include/alignset/point_set.h \
+         include/alignset/version.h bin/alignset bin/alignset-server; do
+  [ -e "$PREFIX/$f" ] || fail "the install lacks $f"
+done
+CONFIG="$(find "$PREFIX" -name alignsetConfig.cmake)"
+PC="$(find "$PREFIX" -name alignset.pc)"
+[ -n "$CONFIG" ] && [ -n "$PC" ] || fail "no alignsetConfig.cmake or alignset.pc"
+# The installed headers stand alone: nothing includes a repository path.
+if grep -n '#include "core/\|#include "client/' "$PREFIX"/include/alignset/*.h; then
+  fail "an installed header includes a repository path"
+fi
+
+# 1. CMake: the consumer sees the prefix and nothing of the source or build tree.
+GEN=()
+command -v ninja >/dev/null && GEN=(-G Ninja)
+cmake -S "$SRC/tests/consumer" -B "$WORK/cmake-build" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON > "$WORK/configure.log" 2>&1 \
+  || { cat "$WORK/configure.log"; fail "configuring the consumer failed"; }
+cmake --build "$WORK/cmake-build" > "$WORK/build.log" 2>&1 || { cat "$WORK/build.log"; fail "building the consumer failed"; }
+if grep -q -e "$(realpath "$BUILD")" -e "$(realpath "$SRC")/client" -e "$(realpath "$SRC")/core" \
+     "$WORK/cmake-build/compile_commands.json"; then
+  fail "the consumer compiled against the build or source tree, not the installed package"
+fi
+
+# 2. pkg-config.
+PKG_CONFIG_PATH="$(dirname "$PC")" pkg-config --exists alignset || fail "pkg-config cannot find alignset"
+# shellcheck disable=SC2046
+c++ -O1 -o "$WORK/pc-consumer" "$SRC/tests/consumer/main.cc" \
+  $(PKG_CONFIG_PATH="$(dirname "$PC")" pkg-config --cflags --libs alignset) \
+  || fail "building the consumer with pkg-config failed"
+
+# 3. The installed server on loopback, and both consumers against it.
+"$PREFIX/bin/alignset-server" --listen 127.0.0.1:0 --port-file "$WORK/port" --db "$WORK/cache.sqlite" \
+  --max-iterations 30 --workers 1 --threads-per-worker 1 --log-level warn > "$WORK/server.log" 2>&1 &
+SERVER_PID=$!
+for _ in $(seq 1 300); do
+  [ -s "$WORK/port" ] && break
+  kill -0 "$SERVER_PID" 2>/dev/null || { cat "$WORK/server.log"; fail "the server exited"; }
+  sleep 0.1
+done
+[ -s "$WORK/port" ] || fail "the server wrote no port"
+ADDR="127.0.0.1:$(cat "$WORK/port")"
+"$WORK/cmake-build/alignset_consumer" "$ADDR"
+"$WORK/pc-consumer" "$ADDR"
+# The installed Python package too, when the build made it.
+PYDIR="$(find "$PREFIX" -type d -path '*dist-packages' | head -n 1)"
+if [ -n "$PYDIR" ] && [ -f "$PYDIR/alignset/v1/alignset_pb2.py" ]; then
+  PYTHONPATH="$PYDIR" /usr/bin/python3 -c "
+import sys, alignset
+p = alignset.Client(sys.argv[1], timeout=60).get(64, 30)
+assert p.shape == (64, 2), p.shape
+print('installed Python package: a (64, 2) set')" "$ADDR"
+fi
+echo "run_consumer_test: find_package and pkg-config consumers both fetched sets from $ADDR"

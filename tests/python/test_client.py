@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""The Python client (client/python/alignset) against the real alignset-server
+on loopback: a set, a batch, the one-direction space, baseline samples, and
+errors with the right status codes.
+
+  ALIGNSET_SERVER_BIN=build/server/alignset-server PYTHONPATH=build/python \
+      /usr/bin/python3 tests/python/test_client.py
+"""
+import os
+import shutil
+import subprocess
+import tempfile
+import time
+import unittest
+
+import grpc
+import numpy as np
+
+import alignset
+
+
+def read(path):
+    with open(path) as f:
+        return f.read()
+
+
+class ServerTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.mkdtemp(prefix="alignset-python-")
+        port_file = os.path.join(cls.dir, "port")
+        cls.log = open(os.path.join(cls.dir, "server.log"), "w")
+        cls.server = subprocess.Popen(
+            [os.environ["ALIGNSET_SERVER_BIN"], "--listen", "127.0.0.1:0", "--port-file", port_file,
+             "--db", os.path.join(cls.dir, "cache.sqlite"), "--max-iterations", "40",
+             "--workers", "2", "--threads-per-worker", "1", "--max-n", "4096",
+             "--log-level", "warn"],
+            stdout=cls.log, stderr=cls.log)
+        for _ in range(300):
+            if os.path.exists(port_file) and read(port_file).strip():
+                break
+            if cls.server.poll() is not None:
+                raise RuntimeError("alignset-server exited: " + read(cls.log.name))
+            time.sleep(0.1)
+        cls.address = "127.0.0.1:" + read(port_file).strip()
+        cls.client = alignset.Client(cls.address, timeout=60)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()
+        cls.server.terminate()
+        cls.server.wait(timeout=30)
+        cls.log.close()
+        shutil.rmtree(cls.dir)
+
+    def test_get_returns_a_numpy_set_in_the_unit_square(self):
+        s = self.client.get_set(256, 30)
+        self.assertEqual(s.points.shape, (256, 2))
+        self.assertEqual(s.points.dtype, np.float64)
+        self.assertTrue(np.all((s.points >= 0) & (s.points < 1)))
+        self.assertEqual(list(s.metadata.served_deg), [30])
+        self.assertEqual(s.metadata.key.phi1_deg, 30)
+        # 60 degrees is the same canonical set with x and y swapped.
+        swapped = self.client.get(256, 60)
+        np.testing.assert_array_equal(swapped, s.points[:, ::-1])
+        # Two directions.
+        self.assertEqual(self.client.get(128, (12, 100)).shape, (128, 2))
+
+    def test_batch_has_a_status_per_item(self):
+        results = self.client.get_many([(64, 30), (8, 30), (64, (10, 20, 30)), (64, 120)])
+        self.assertEqual(len(results), 4)
+        self.assertIsInstance(results[0], alignset.AlignedSet)
+        self.assertIsInstance(results[1], alignset.AlignSetError)
+        self.assertEqual(results[1].code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertIn("below the minimum of 16", results[1].message)
+        self.assertEqual(results[2].code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertTrue(results[3].metadata.swapped and results[3].metadata.inverted)
+        np.testing.assert_array_equal(results[0].points, self.client.get(64, 30))
+
+    def test_realizations(self):
+        r = self.client.get_realizations(64, 30, 3)
+        self.assertEqual(r.shape, (3, 64, 2))
+        self.assertFalse(np.array_equal(r[0], r[1]))
+        np.testing.assert_array_equal(r[0], self.client.get(64, 30))
+        s = self.client.get_set(64, 30, realization=2)
+        np.testing.assert_array_equal(s.points, r[2])
+        self.assertEqual(s.metadata.key.realization, 2)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(64, 30, realization=64)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+
+    def test_one_direction_space(self):
+        space = self.client.get_space(32)
+        self.assertEqual(space.shape, (46, 32, 2))
+        np.testing.assert_array_equal(space[17], self.client.get(32, 17))
+
+    def test_baseline_samples(self):
+        a = self.client.samples("owen-sobol", 64, seed=3)
+        self.assertEqual(a.shape, (64, 2))
+        np.testing.assert_array_equal(a, self.client.samples("owen-sobol", 64, seed=3))
+        self.assertFalse(np.array_equal(a, self.client.samples("owen-sobol", 64, seed=3, shear=25)))
+
+    def test_errors_carry_the_status_code(self):
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(5000, 30)  # above this server's --max-n 4096
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertIn("maximum of 4096", e.exception.message)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(64, float("nan"))
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.samples("no-such-sampler", 64)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get_many([(64, 30)] * 257)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        # A per-call deadline shorter than an optimization.
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(4096, 7, timeout=0.01)
+        self.assertEqual(e.exception.code, grpc.StatusCode.DEADLINE_EXCEEDED)
+        # The server keeps serving.
+        self.assertGreater(self.client.metrics().requests_invalid, 0)
+
+    def test_an_unreachable_server_is_unavailable(self):
+        with alignset.Client("127.0.0.1:1", timeout=5) as down:
+            with self.assertRaises(alignset.AlignSetError) as e:
+                down.get(64, 30)
+            self.assertEqual(e.exception.code, grpc.StatusCode.UNAVAILABLE)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
