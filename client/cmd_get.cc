@@ -29,6 +29,9 @@ struct GetOptions {
   int64_t realization = 0;
   // -m M: realizations r .. r + M - 1 in one batch call, as a multi-set file.
   std::optional<int64_t> sets;
+  // --space 1dir: the whole one-direction space of N (the 46 canonical sets,
+  // phi = 0..45) in one batch call, as (46, N, 2) .npy or 46 text sets.
+  std::string space;
   ServiceOptions service;
 };
 
@@ -96,7 +99,43 @@ StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOption
   return sets;
 }
 
+// The one-direction space: what a table-driven renderer loads once and
+// aligns itself (method.md, Algorithm 1).
+int RunGetSpace(const GetOptions& o) {
+  if (!o.dirs.empty() || o.sets) {
+    return Usage(Status::InvalidArgument("--space 1dir takes no --dir and no -m (it is the 46 canonical sets)"));
+  }
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
+  if (!o.quiet) {
+    std::fprintf(stderr, "alignset get: the one-direction space of N = %lld (46 sets) in one call\n",
+                 static_cast<long long>(o.n));
+  }
+  auto batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
+                                               static_cast<uint32_t>(o.realization));
+  if (!batch.ok()) return Failure(batch.status());
+  std::vector<PointSet> points;
+  std::string comment = "alignset one-direction space: set k is the canonical set for phi = k deg "
+                        "(k = 0..45); other directions by Algorithm 1 (swap / invert)";
+  for (size_t k = 0; k < batch->size(); ++k) {
+    BatchItem& item = (*batch)[k];
+    if (!item.status.ok()) return Failure(Status::Unavailable("phi = " + std::to_string(k) + ": " + item.status.message()));
+    comment += "\n" + Comment(item.set.info);
+    points.push_back(std::move(item.set.points));
+  }
+  if (Status written = WritePointSets(o.out, points, comment); !written.ok()) return Failure(written);
+  FILE* report = ReportStreamFor(o.out);
+  std::fprintf(report, "wrote %s: %zu sets of %lld points (phi = 0..45 deg), realization %lld\n",
+               o.out.c_str(), points.size(), static_cast<long long>(o.n),
+               static_cast<long long>(o.realization));
+  return kExitOk;
+}
+
 int RunGet(const GetOptions& o) {
+  if (!o.space.empty()) return RunGetSpace(o);
+  if (o.dirs.empty()) {
+    return Usage(Status::InvalidArgument("give --dir DEG (once or twice), or --space 1dir"));
+  }
   if (o.dirs.size() > 2) {
     return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
                                          std::to_string(o.dirs.size())));
@@ -163,7 +202,6 @@ void AddGetCommand(CLI::App& app) {
   // The server checks N against its own maximum; here only the type.
   c->add_option("-n,--n", o->n, "number of points")->required()->check(IntegerIn(0, UINT32_MAX));
   c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
-      ->required()
       ->allow_extra_args(false)
       ->check(FiniteNumber());
   c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
@@ -175,6 +213,10 @@ void AddGetCommand(CLI::App& app) {
   c->add_option("-m,--sets", o->sets,
                 "several realizations, R .. R+M-1, in one call: '#'-separated text, (m, N, 2) .npy")
       ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  c->add_option("--space", o->space,
+                 "instead of --dir: the whole one-direction space, the 46 canonical sets\n"
+                 "phi = 0..45 ((46, N, 2) .npy; a table for a renderer that aligns itself)")
+      ->check(CLI::IsMember({"1dir"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <alignset/pixel_shift.h>
+
 #include "core/sampling/owen_sobol.h"
 #include "core/sampling/rank1_lattice.h"
 #include "core/sampling/samplers.h"
@@ -128,9 +130,14 @@ class Aligned : public PixelSampler {
       return Mean(f, OwenScrambledSobol(n_, PixelHash(t.seed, t.x, t.y, kSaltSet)));
     }
     if (!set) return std::nan("");  // a set the table was not filled with: shows up, never hides
-    const Point2 s = shift_ ? HashShift(PixelHash(t.seed, t.x, t.y, kSaltShift))
-                            : HashShift(HashCombine(t.seed, kSaltShift));
-    return MeanShifted(f, *set, s);
+    // The client library's per-pixel recipe (<alignset/pixel_shift.h>).
+    const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
+    double sum = 0.0;
+    for (const Point2& p : *set) {
+      const Point2 q = ShiftPoint(p, s);
+      sum += f.Eval({q.x, q.y});
+    }
+    return sum / static_cast<double>(set->size());
   }
 
  private:

@@ -38,7 +38,7 @@
 #include "bench/render/scene.h"
 #include "bench/render/set_fetch.h"
 #include "client/progress.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "core/sampling/screen_space_rank1.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/util/angles.h"
@@ -246,9 +246,9 @@ int Main(int argc, char** argv) {
     }
   }
 
-  cli::ConnectOptions opts;
+  ConnectOptions opts;
   opts.address = a["server"];
-  auto client = cli::ServiceClient::Connect(opts);
+  auto client = ServiceClient::Connect(opts);
   if (!client.ok()) {
     std::fprintf(stderr, "render_bench: %s\n", client.status().message().c_str());
     return 1;

@@ -56,7 +56,7 @@ StatusOr<RenderSummary> RunRender(
   AlignedSetTable table;
   ShiftTile tile;
   if (r.sampler == "aligned" || r.sampler == "aligned-exact") {
-    auto client = cli::ServiceClient::Connect(r.server);
+    auto client = ServiceClient::Connect(r.server);
     if (!client.ok()) return client.status();
     const auto pairs = NeededPairs(r.sampler == "aligned" ? estimated : exact, c.policy);
     auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress);

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "bench/render/pixel_samplers.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "core/util/status.h"
 
 namespace alignset::render {
@@ -23,7 +23,7 @@ struct RenderRequest {
   LineOrientation orientation = LineOrientation::kNormal;  // line, segment
   double segment_length = 0.5;
   int threads = 2;
-  cli::ConnectOptions server;       // aligned, aligned-exact only
+  ConnectOptions server;       // aligned, aligned-exact only
 };
 
 // What came out: the MSE against the exact image over edge and smooth pixels.

@@ -1,15 +1,18 @@
 #include "bench/render/set_fetch.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace alignset::render {
 
-StatusOr<AlignedSetTable> FetchAlignedSets(cli::ServiceClient& client, uint32_t n,
+StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
                                            const FetchProgressFn& progress) {
   auto report = [&](const std::string& stage, double done, double total, const std::string& d) {
     if (progress) progress(stage, done, total, d);
   };
-  auto precompute = [&](const cli::PrecomputeSpec& spec, const std::string& stage) -> Status {
-    auto r = client.Precompute(spec, [&](const cli::PrecomputeUpdate& u) {
+  auto precompute = [&](const PrecomputeSpec& spec, const std::string& stage) -> Status {
+    auto r = client.Precompute(spec, [&](const PrecomputeUpdate& u) {
       report(stage, static_cast<double>(u.done + u.cached_already + u.failed),
              static_cast<double>(u.total),
              u.last_key.empty() ? std::string() : "last " + u.last_key);
@@ -21,12 +24,12 @@ StatusOr<AlignedSetTable> FetchAlignedSets(cli::ServiceClient& client, uint32_t 
     }
     return Status::Ok();
   };
-  cli::PrecomputeSpec one;
+  PrecomputeSpec one;
   one.n = {n};
   one.space = 1;
   if (Status s = precompute(one, "optimize 1-dir space N=" + std::to_string(n)); !s.ok()) return s;
   if (!pairs.empty()) {
-    cli::PrecomputeSpec two;
+    PrecomputeSpec two;
     two.n = {n};
     two.space = 0;
     for (const auto& [a, b] : pairs) two.keys.push_back({a, b});
@@ -36,22 +39,30 @@ StatusOr<AlignedSetTable> FetchAlignedSets(cli::ServiceClient& client, uint32_t 
   AlignedSetTable table;
   table.n = n;
   table.one.resize(180);
-  const double total = 180.0 + static_cast<double>(pairs.size());
-  double done = 0.0;
-  for (int deg = 0; deg < 180; ++deg) {
-    auto set = client.GetAlignedSet(n, {static_cast<double>(deg)});
-    if (!set.ok()) return set.status();
-    if (set->info.served_deg.size() != 1 || set->info.served_deg[0] != deg) {
-      return Status::Internal("server served a different direction for " + std::to_string(deg) + "°");
+  std::vector<SetRequest> items;
+  for (int deg = 0; deg < 180; ++deg) items.push_back({n, {static_cast<double>(deg)}});
+  for (const auto& [a, b] : pairs) items.push_back({n, {static_cast<double>(a), static_cast<double>(b)}});
+  const std::string stage = "fetch sets N=" + std::to_string(n);
+  for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
+    const size_t end = std::min(items.size(), begin + kMaxBatchItems);
+    auto batch = client.GetAlignedSets({items.begin() + begin, items.begin() + end});
+    if (!batch.ok()) return batch.status();
+    if (batch->size() != end - begin) return Status::Internal("batch answered " + std::to_string(batch->size()) + " items of " + std::to_string(end - begin));
+    for (size_t i = begin; i < end; ++i) {
+      BatchItem& item = (*batch)[i - begin];
+      if (!item.status.ok()) return item.status;
+      if (i < 180) {
+        const int deg = static_cast<int>(i);
+        if (item.set.info.served_deg.size() != 1 || item.set.info.served_deg[0] != deg) {
+          return Status::Internal("server served a different direction for " + std::to_string(deg) + " deg");
+        }
+        table.one[deg] = std::move(item.set.points);
+      } else {
+        const int a = static_cast<int>(items[i].directions_deg[0]), b = static_cast<int>(items[i].directions_deg[1]);
+        table.two[{a, b}] = std::move(item.set.points);
+      }
     }
-    table.one[deg] = std::move(set->points);
-    report("fetch sets N=" + std::to_string(n), ++done, total, "");
-  }
-  for (const auto& [a, b] : pairs) {
-    auto set = client.GetAlignedSet(n, {static_cast<double>(a), static_cast<double>(b)});
-    if (!set.ok()) return set.status();
-    table.two[{a, b}] = std::move(set->points);
-    report("fetch sets N=" + std::to_string(n), ++done, total, "");
+    report(stage, static_cast<double>(end), static_cast<double>(items.size()), "");
   }
   return table;
 }

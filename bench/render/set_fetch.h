@@ -7,7 +7,8 @@
 #include <utility>
 
 #include "bench/render/aligned_sets.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
+
 #include "core/util/status.h"
 
 namespace alignset::render {
@@ -21,10 +22,11 @@ using FetchProgressFn =
 //  1. Precompute the one-direction space (46 canonical keys) for N: once per
 //     N, resumable, with progress; cached keys cost nothing;
 //  2. Precompute the two-direction keys `pairs` need (explicit keys);
-//  3. GetAlignedSet for every whole degree 0..179 and every pair: cache hits,
-//     aligned by the server (swap / invert).
+//  3. the 180 aligned one-direction sets (every whole degree) and the pairs
+//     through the batch call GetAlignedSets (at most kMaxBatchItems a call):
+//     cache hits, aligned by the server (swap / invert).
 // A failed call comes back as its Status (the server's message).
-StatusOr<AlignedSetTable> FetchAlignedSets(cli::ServiceClient& client, uint32_t n,
+StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
                                            const FetchProgressFn& progress);
 

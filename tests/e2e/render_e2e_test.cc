@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "bench/render/direction.h"
+#include "bench/render/npy.h"
 #include "bench/render/pixel_samplers.h"
 #include "bench/render/renderer.h"
 #include "bench/render/scene.h"
 #include "bench/render/set_fetch.h"
-#include "client/service_client.h"
+#include <alignset/client.h>
 #include "tests/e2e/server_process.h"
 
 namespace alignset::render {
@@ -24,9 +25,9 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
   ServerProcess server(dir.path(), {"--max-iterations", "200", "--workers", "2",
                                     "--threads-per-worker", "1"});
   ASSERT_EQ(server.error(), "");
-  cli::ConnectOptions o;
+  ConnectOptions o;
   o.address = server.address();
-  auto client = cli::ServiceClient::Connect(o);
+  auto client = ServiceClient::Connect(o);
   ASSERT_TRUE(client.ok()) << client.status().message();
 
   constexpr uint32_t kN = 16;
@@ -57,11 +58,14 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
     std::set<std::pair<int, int>> pairs = NeededPairs(mine_exact, policy);
     for (const auto& p : NeededPairs(mine_est, policy)) pairs.insert(p);
     ASSERT_FALSE(pairs.empty()) << name;  // the two-direction pixels need them
-    int updates = 0;
+    double fetched = 0.0, fetch_total = 0.0;
     auto table = FetchAlignedSets(**client, kN, pairs,
-                                  [&](const std::string&, double, double, const std::string&) { ++updates; });
+                                  [&](const std::string& stage, double done, double total, const std::string&) {
+                                    if (stage.rfind("fetch", 0) == 0) fetched = done, fetch_total = total;
+                                  });
     ASSERT_TRUE(table.ok()) << table.status().message();
-    EXPECT_GT(updates, 180);
+    EXPECT_EQ(fetch_total, 180.0 + pairs.size());  // progress reached the end
+    EXPECT_EQ(fetched, fetch_total);
     ASSERT_EQ(table->one.size(), 180u);
     for (int deg = 0; deg < 180; ++deg) {
       ASSERT_NE(table->One(deg), nullptr);
@@ -102,11 +106,53 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
   }
 }
 
+TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
+  TempDir dir;
+  ServerProcess server(dir.path(), {"--max-iterations", "200", "--workers", "2",
+                                    "--threads-per-worker", "1"});
+  ASSERT_EQ(server.error(), "");
+  const std::string cli = std::string(ALIGNSET_CLI_PATH) + " ";
+  // The whole one-direction space of N as one (46, N, 2) array: set k is the
+  // canonical set phi = k, i.e. what the server serves for k degrees.
+  const std::string space = dir.path() + "/space.npy";
+  auto r = e2e::RunCommand(cli + "get --space 1dir -n 16 -q --server " + server.address() + " -o " + space);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<size_t> shape;
+  auto values = ReadNpy(space, &shape);
+  ASSERT_TRUE(values.ok()) << values.status().message();
+  ASSERT_EQ(shape, (std::vector<size_t>{46, 16, 2}));
+  ConnectOptions o;
+  o.address = server.address();
+  auto client = ServiceClient::Connect(o);
+  ASSERT_TRUE(client.ok());
+  for (int k : {0, 17, 45}) {
+    auto set = (*client)->GetAlignedSet(16, {double(k)});
+    ASSERT_TRUE(set.ok());
+    for (size_t j = 0; j < 16; ++j) {
+      EXPECT_EQ((*values)[(k * 16 + j) * 2], set->points[j].x) << k;
+      EXPECT_EQ((*values)[(k * 16 + j) * 2 + 1], set->points[j].y) << k;
+    }
+  }
+  // One image with the aligned sets (geometry θ) from that server.
+  const std::string img = dir.path() + "/aligned.npy";
+  r = e2e::RunCommand(cli + "render --scene shadow --size 32 --sampler aligned-exact -n 16 --server " +
+                      server.address() + " -o " + img);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto pixels = ReadNpy(img, &shape);
+  ASSERT_TRUE(pixels.ok());
+  ASSERT_EQ(shape, (std::vector<size_t>{32, 32}));
+  const std::vector<double> ref = MakeShadowScene(32, 32, 1).Reference();
+  double mse = 0.0;
+  for (size_t i = 0; i < ref.size(); ++i) mse += ((*pixels)[i] - ref[i]) * ((*pixels)[i] - ref[i]) / ref.size();
+  EXPECT_LT(mse, 1e-3);  // 16 samples of a [0, 1] integrand: far below 1/16
+  EXPECT_GT(mse, 0.0);
+}
+
 TEST(RenderE2e, AServerThatIsGoneIsAClearError) {
-  cli::ConnectOptions o;
+  ConnectOptions o;
   o.address = "127.0.0.1:1";  // nothing listens there
   o.timeout_seconds = 5;
-  auto client = cli::ServiceClient::Connect(o);
+  auto client = ServiceClient::Connect(o);
   ASSERT_TRUE(client.ok());
   auto table = FetchAlignedSets(**client, 16, {}, nullptr);
   ASSERT_FALSE(table.ok());
