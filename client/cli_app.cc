@@ -1,6 +1,7 @@
 #include "client/cli_app.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <iostream>
 #include <vector>
@@ -51,6 +52,21 @@ CLI::Validator IntegerIn(int64_t lo, int64_t hi) {
         return v.ok() ? std::string() : WithoutSubject(v.status().message());
       },
       "", "integer in range");
+}
+
+CLI::Validator SeedValue() {
+  return CLI::Validator(
+      [](std::string& text) {
+        uint64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto r = std::from_chars(text.data(), end, v);
+        if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != end) {
+          return "'" + text + "' is not a seed (an integer in [0, 18446744073709551615])";
+        }
+        if (r.ec == std::errc::result_out_of_range) return text + " is above 18446744073709551615";
+        return std::string();
+      },
+      "", "seed");
 }
 
 CLI::Validator FiniteNumber() {

@@ -39,6 +39,9 @@ void Finish(int exit_code);
 // an integer in [lo, hi]; a finite real number (no nan, inf, overflow); a
 // finite number in [lo, hi].
 CLI::Validator IntegerIn(int64_t lo, int64_t hi);
+// A seed: any unsigned 64-bit integer (the server reports realization seeds
+// beyond INT64_MAX, and `optimize --seed` must reproduce them).
+CLI::Validator SeedValue();
 CLI::Validator FiniteNumber();
 CLI::Validator FiniteIn(double lo, double hi);
 

@@ -51,7 +51,7 @@ struct EvaluateOptions {
   std::string file;
   double normal = 0.0;
   int64_t shifts = 4096;
-  int64_t seed = 7;
+  uint64_t seed = 7;
   int64_t edges = 8;
   std::vector<double> extra;
   int64_t threads = 0;
@@ -108,7 +108,7 @@ void AddEvaluateCommand(CLI::App& app) {
       ->check(IntegerIn(1024, 1 << 24));
   c->add_option("-s,--seed", o->seed, "seed of the shifts")
       ->capture_default_str()
-      ->check(IntegerIn(0, INT64_MAX));
+      ->check(SeedValue());
   c->add_option("--dir", o->extra, "another strip to report (degrees), repeatable")
       ->allow_extra_args(false)
       ->check(FiniteNumber());

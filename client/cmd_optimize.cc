@@ -17,7 +17,7 @@ namespace {
 struct OptimizeOptions {
   int64_t n = 0;
   std::vector<double> dirs;
-  int64_t seed = 1;
+  uint64_t seed = 1;
   OptimizerOptions optimizer;
   int64_t threads = 0;
   std::string engine = "auto";
@@ -144,7 +144,7 @@ void AddOptimizeCommand(CLI::App& app) {
       ->check(FiniteNumber());
   c->add_option("-s,--seed", o->seed, "seed of the Owen-scrambled Sobol start")
       ->capture_default_str()
-      ->check(IntegerIn(0, INT64_MAX));
+      ->check(SeedValue());
   c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
       ->required();
   c->add_option("-m,--sets", o->sets,

@@ -15,7 +15,7 @@ namespace {
 struct SampleOptions {
   std::string kind;
   int64_t n = 0;
-  int64_t seed = 1;
+  uint64_t seed = 1;
   double shear = 0.0;
   bool sheared = false;
   std::string out;
@@ -78,7 +78,7 @@ void AddSampleCommand(CLI::App& app) {
   CLI::App* c = AddCommand(app, "sample", "a set from a classic sampler (--list names them)");
   c->add_option("KIND", o->kind, "sampler name (see --list)");
   c->add_option("-n,--n", o->n, "number of points")->check(IntegerIn(1, 1 << 20));
-  c->add_option("-s,--seed", o->seed, "seed")->capture_default_str()->check(IntegerIn(0, INT64_MAX));
+  c->add_option("-s,--seed", o->seed, "seed")->capture_default_str()->check(SeedValue());
   CLI::Option* shear = c->add_option("--shear", o->shear,
                 "shear the set (Algorithm 2) so that its dark axis moves onto DEG\n"
                 "(spectral direction = edge normal)")

@@ -15,7 +15,7 @@ struct VarianceOptions {
   std::vector<std::string> files;
   std::vector<double> normals;
   int64_t shifts = 4096;
-  int64_t seed = 7;
+  uint64_t seed = 7;
 };
 
 int Usage(const Status& s) { return ReportError("variance", s, kExitUsage); }
@@ -68,7 +68,7 @@ void AddVarianceCommand(CLI::App& app) {
       ->check(IntegerIn(16, 1 << 24));
   c->add_option("-s,--seed", o->seed, "seed of the shifts")
       ->capture_default_str()
-      ->check(IntegerIn(0, INT64_MAX));
+      ->check(SeedValue());
   c->callback([o] { Finish(RunVariance(*o)); });
 }
 

@@ -98,6 +98,10 @@ TEST(CliConventions, UtkShortOptionsMeanTheLongOnes) {
   r = RunCli("optimize --n 64 --dir 30 --seed 2 --max-iterations 20 --out " + b);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(*ReadPointFile(a), *ReadPointFile(b));
+  // Seeds are unsigned 64-bit: a realization's seed (above INT64_MAX) can be given back.
+  r = RunCli("sample random -n 16 -s 18446744073709551615 -o " + a);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(*ReadPointFile(a), *Sample("random", 16, UINT64_MAX));
   r = RunCli("variance " + a + " --normal 30 -s 5 --shifts 64");
   const CliRun l = RunCli("variance " + a + " --normal 30 --seed 5 --shifts 64");
   EXPECT_EQ(r.exit_code, 0) << r.err;
