@@ -6,8 +6,14 @@
 //
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
-//       [--p 0 --low-radius 0 --low-boost 1 --sw-weight 0 --iterations 0 --lr 0]
+//       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
+//        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR]
 //       [--cache DIR] [--out results.tsv]
+//
+// --profile supplement is algorithm version 2 (the flat loss on the
+// supplement's K, SupplementOptimizerOptions); the knobs after it override
+// single options of the chosen profile (--kl/--kw/--kr multiply the
+// profile's strip length, strip width and disk radius).
 //
 // Step-type integrands (steps and the smoothed step) are averaged over
 // `--offsets` parallel edges at offsets spread over [-1/4, 1/4] along the
@@ -49,13 +55,9 @@ struct Options {
   int shifts = 2048;
   int offsets = 8;
   bool exact = false;
-  bool snap_axes = false;
-  // Experiment: a first stage with exponent p1 for `stage1` iterations, then
-  // the main options from its result.
-  double p1 = -1.0;
-  // Experiment: multipliers of the default strip length, width, disk radius.
+  // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
-  int stage1 = 0;  // experiment: clamp each axis projection into its rank's stratum
+  bool supplement = false;
   int threads = 2;
   OptimizerOptions opt;
   std::string cache = "build/bench-cache";
@@ -95,6 +97,14 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->shifts = std::stoi(next());
     } else if (a == "--offsets") {
       o->offsets = std::stoi(next());
+    } else if (a == "--profile") {
+      const std::string profile = next();
+      if (profile != "current" && profile != "supplement") {
+        std::fprintf(stderr, "integrand_family: --profile is current or supplement\n");
+        std::exit(2);
+      }
+      o->supplement = profile == "supplement";
+      if (o->supplement) o->opt = SupplementOptimizerOptions();
     } else if (a == "--stratify") {
       o->opt.stratify_axes = std::stoi(next()) != 0;
     } else if (a == "--kl") {
@@ -103,20 +113,12 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->kw = std::stod(next());
     } else if (a == "--kr") {
       o->kr = std::stod(next());
-    } else if (a == "--p1") {
-      o->p1 = std::stod(next());
-    } else if (a == "--stage1") {
-      o->stage1 = std::stoi(next());
-    } else if (a == "--snap-axes") {
-      o->snap_axes = true;
     } else if (a == "--exact") {
       o->exact = true;
     } else if (a == "--threads") {
       o->threads = std::stoi(next());
     } else if (a == "--p") {
       o->opt.weighting.exponent = std::stod(next());
-    } else if (a == "--ps") {
-      o->opt.weighting.strip_exponent = std::stod(next());
     } else if (a == "--margin") {
       o->opt.final_margin = std::stod(next());
     } else if (a == "--zero") {
@@ -125,14 +127,6 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->opt.warmup_fraction = std::stod(next());
     } else if (a == "--wp") {
       o->opt.warmup_weighting.exponent = std::stod(next());
-    } else if (a == "--swa") {
-      o->opt.sw_arbitrary_scale = std::stod(next());
-    } else if (a == "--ss") {
-      o->opt.weighting.strip_scale = std::stod(next());
-    } else if (a == "--low-radius") {
-      o->opt.weighting.low_radius = std::stod(next());
-    } else if (a == "--low-boost") {
-      o->opt.weighting.low_boost = std::stod(next());
     } else if (a == "--sw-weight") {
       o->opt.sw_weight = std::stod(next());
     } else if (a == "--iterations") {
@@ -147,7 +141,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--low-radius R] [--low-boost B] [--sw-weight C] [--iterations I] [--lr LR]\n"
+          "  [--profile current|supplement] [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
+          "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--cache DIR] [--out FILE.tsv]\n");
       std::exit(0);
     } else {
@@ -218,16 +213,22 @@ void Parallel(size_t count, int threads, Fn fn) {
   for (auto& th : pool) th.join();
 }
 
+FrequencyParams Params(const Options& o, uint32_t n) {
+  const FrequencyParams fp = o.supplement ? SupplementFrequencyParams(n) : DefaultFrequencyParams(n);
+  return {fp.length * o.kl, fp.width * o.kw, fp.radius * o.kr};
+}
+
 std::string Key(const Options& o, uint32_t n, double theta, int seed) {
   std::ostringstream s;
   s.precision(17);
   const OptimizerOptions& p = o.opt;
+  const FrequencyParams fp = Params(o, n);
   s << "n=" << n << ";t=" << theta << ";t2=" << o.theta2 << ";seed=" << seed
-    << ";p=" << p.weighting.exponent << ";lr0=" << p.weighting.low_radius
-    << ";lb=" << p.weighting.low_boost << ";ps=" << p.weighting.strip_exponent << ";ss=" << p.weighting.strip_scale << ";sw=" << p.sw_weight << ";it=" << p.max_iterations
-    << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
-    << ";wp=" << p.warmup_weighting.exponent << ";swa=" << p.sw_arbitrary_scale << ";p1=" << o.p1 << ";s1=" << o.stage1 << ";k=" << o.kl << "," << o.kw << "," << o.kr
-    << ";v=3";
+    << ";p=" << p.weighting.exponent << ";sw=" << p.sw_weight << ";it=" << p.max_iterations
+    << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius
+    << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
+    << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
+    << fp.radius << ";v=4";
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
   char hex[17];
@@ -266,24 +267,9 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   problem.directions = {theta};
   if (!std::isnan(o.theta2)) problem.directions.push_back(o.theta2);
   problem.seed = static_cast<uint64_t>(seed);
-  if (o.kl != 1.0 || o.kw != 1.0 || o.kr != 1.0) {
-    FrequencyParams fp = DefaultFrequencyParams(n);
-    problem.frequency_params = FrequencyParams{fp.length * o.kl, fp.width * o.kw, fp.radius * o.kr};
-  }
+  problem.frequency_params = Params(o, n);
   FastEngine engine(o.threads);
   const auto t0 = std::chrono::steady_clock::now();
-  if (o.stage1 > 0) {
-    OptimizerOptions first = o.opt;
-    first.weighting.exponent = o.p1;
-    first.weighting.strip_exponent = -1.0;
-    first.max_iterations = o.stage1;
-    auto r1 = Optimize(problem, first, engine);
-    if (!r1.ok()) {
-      std::fprintf(stderr, "integrand_family: %s\n", r1.status().message().c_str());
-      std::exit(1);
-    }
-    problem.start = r1->points;
-  }
   auto result = Optimize(problem, o.opt, engine);
   *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!result.ok()) {
@@ -333,10 +319,13 @@ int Run(const Options& o) {
   std::filesystem::create_directories(o.cache);
   std::FILE* tsv = o.out.empty() ? nullptr : std::fopen(o.out.c_str(), "w");
   if (tsv) std::fprintf(tsv, "theta\tn\tintegrand\taligned\towen_sobol\tratio\n");
-  std::printf("# weighting p=%g strip p=%g scale %g low_radius=%g low_boost=%g sw=%g iterations=%d; %d seed(s), "
+  std::printf("# profile %s: weighting p=%g (warm-up p=%g for %g), stratify %d, zero radius %g, "
+              "margin %g, K x(%g, %g, %g), sw=%g iterations=%d; %d seed(s), "
               "Owen-Sobol mean of %d scrambles, %d shifts, %d edge offsets\n",
-              o.opt.weighting.exponent, o.opt.weighting.strip_exponent, o.opt.weighting.strip_scale, o.opt.weighting.low_radius, o.opt.weighting.low_boost,
-              o.opt.sw_weight, o.opt.max_iterations, o.seeds, o.scrambles, o.shifts, o.offsets);
+              o.supplement ? "supplement (v2)" : "current", o.opt.weighting.exponent,
+              o.opt.warmup_weighting.exponent, o.opt.warmup_fraction, o.opt.stratify_axes ? 1 : 0,
+              o.opt.zero_radius, o.opt.final_margin, o.kl, o.kw, o.kr, o.opt.sw_weight,
+              o.opt.max_iterations, o.seeds, o.scrambles, o.shifts, o.offsets);
   double worst_ratio = 0.0;
   for (double theta : o.theta) {
     const std::vector<Member> family = Family(theta, o.theta2, o.offsets);
@@ -347,21 +336,6 @@ int Run(const Options& o) {
       for (int s = 1; s <= o.seeds; ++s) {
         double t = 0.0;
         sets.push_back(AlignedSet(o, n, theta, s, &t));
-        if (o.snap_axes) {
-          for (int axis = 0; axis < 2; ++axis) {
-            std::vector<uint32_t> order(n);
-            for (uint32_t i = 0; i < n; ++i) order[i] = i;
-            auto coord = [&](uint32_t i) -> double& {
-              return axis == 0 ? sets.back()[i].x : sets.back()[i].y;
-            };
-            std::sort(order.begin(), order.end(),
-                      [&](uint32_t a, uint32_t b) { return coord(a) < coord(b); });
-            for (uint32_t r = 0; r < n; ++r) {
-              double& c = coord(order[r]);
-              c = std::clamp(c, static_cast<double>(r) / n, std::nextafter((r + 1.0) / n, 0.0));
-            }
-          }
-        }
         opt_seconds += t;
       }
       std::vector<double> aligned(family.size(), 0.0);

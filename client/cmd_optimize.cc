@@ -26,6 +26,9 @@ struct OptimizeOptions {
   std::optional<double> length, width, radius;
   // -m: several sets, one per seed, written as a multi-set file.
   std::optional<int> sets;
+  // "current" (algorithm version 3) or "supplement" (the paper's flat loss
+  // and K, alignset's version 2), for comparisons.
+  std::string profile = "current";
 };
 
 int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
@@ -38,13 +41,24 @@ int RunOptimize(const OptimizeOptions& o) {
   }
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
-  const OptimizerOptions& options = o.optimizer;
+  const bool supplement = o.profile == "supplement";
+  OptimizerOptions options = o.optimizer;
+  if (supplement) {
+    const OptimizerOptions s = SupplementOptimizerOptions();
+    options.weighting = s.weighting;
+    options.warmup_weighting = s.warmup_weighting;
+    options.warmup_fraction = s.warmup_fraction;
+    options.stratify_axes = s.stratify_axes;
+    options.zero_radius = s.zero_radius;
+    options.final_margin = s.final_margin;
+  }
   OptimizationProblem problem;
   problem.n = static_cast<uint32_t>(o.n);
   problem.directions = o.dirs;
   problem.seed = static_cast<uint64_t>(o.seed);
-  if (o.length || o.width || o.radius) {
-    const FrequencyParams fp = DefaultFrequencyParams(problem.n);
+  if (o.length || o.width || o.radius || supplement) {
+    const FrequencyParams fp =
+        supplement ? SupplementFrequencyParams(problem.n) : DefaultFrequencyParams(problem.n);
     problem.frequency_params = FrequencyParams{o.length.value_or(fp.length),
                                                o.width.value_or(fp.width),
                                                o.radius.value_or(fp.radius)};
@@ -156,6 +170,11 @@ void AddOptimizeCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(IntegerIn(0, 1024));
   const std::string tuning = "Tuning";
+  c->add_option("--profile", o->profile,
+                "current (the low-frequency levers) or supplement (the paper's flat loss and K)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"current", "supplement"}))
+      ->group(tuning);
   c->add_option("--max-iterations", o->optimizer.max_iterations,
                 "iteration budget (0: 1000 up to N = 4096, then growing like sqrt N)")
       ->check(IntegerIn(0, 100000000))

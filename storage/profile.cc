@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 240,
+static_assert(sizeof(OptimizerOptions) == 168,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -53,20 +53,11 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "learning_rate", o.learning_rate);
   Field(t, "sw_weight", o.sw_weight);
   Field(t, "weight_exponent", o.weighting.exponent);
-  Field(t, "weight_strip_exponent", o.weighting.strip_exponent);
-  Field(t, "weight_strip_scale", o.weighting.strip_scale);
-  Field(t, "weight_low_radius", o.weighting.low_radius);
-  Field(t, "weight_low_boost", o.weighting.low_boost);
   Field(t, "warmup_exponent", o.warmup_weighting.exponent);
-  Field(t, "warmup_strip_exponent", o.warmup_weighting.strip_exponent);
-  Field(t, "warmup_strip_scale", o.warmup_weighting.strip_scale);
-  Field(t, "warmup_low_radius", o.warmup_weighting.low_radius);
-  Field(t, "warmup_low_boost", o.warmup_weighting.low_boost);
   Field(t, "warmup_fraction", o.warmup_fraction);
   Field(t, "stratify_axes", static_cast<int>(o.stratify_axes));
   Field(t, "zero_radius", o.zero_radius);
   Field(t, "final_margin", o.final_margin);
-  Field(t, "sw_arbitrary_scale", o.sw_arbitrary_scale);
   Field(t, "beta1", o.beta1);
   Field(t, "beta2", o.beta2);
   Field(t, "epsilon", o.epsilon);

@@ -16,7 +16,8 @@
 namespace alignset::storage {
 
 // Bumped whenever the optimizer's output for the same parameters changes.
-inline constexpr int kAlgorithmVersion = 2;
+// 3: the low-frequency levers (weighted loss, axis clamp, projection, wider K).
+inline constexpr int kAlgorithmVersion = 3;
 
 // Identifies how a set was made: every optimization parameter and the
 // algorithm version, hashed into a short stable hex id. A changed parameter

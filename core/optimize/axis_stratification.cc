@@ -45,8 +45,11 @@ void ClampRanks(PointSet* points, Coordinate coord, double margin, std::vector<u
   const double n = static_cast<double>(points->size());
   for (size_t r = 0; r < order->size(); ++r) {
     double& c = coord((*points)[(*order)[r]]);
-    const double lo = (static_cast<double>(r) + margin) / n;
-    const double hi = std::nextafter((static_cast<double>(r + 1) - margin) / n, 0.0);
+    // Bounds whose stratum, floor(c N), is r in floating point too.
+    double lo = (static_cast<double>(r) + margin) / n;
+    while (std::floor(lo * n) < static_cast<double>(r)) lo = std::nextafter(lo, 1.0);
+    double hi = std::nextafter((static_cast<double>(r + 1) - margin) / n, 0.0);
+    while (std::floor(hi * n) > static_cast<double>(r)) hi = std::nextafter(hi, 0.0);
     c = std::clamp(c, lo, hi);
   }
 }

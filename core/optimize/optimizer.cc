@@ -73,6 +73,17 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n) {
   return options.sw_weight > 0.0 ? options.sw_weight : 4.0 * static_cast<double>(n);
 }
 
+OptimizerOptions SupplementOptimizerOptions() {
+  OptimizerOptions o;
+  o.weighting = {};
+  o.warmup_weighting = {};
+  o.warmup_fraction = 0.0;
+  o.stratify_axes = false;
+  o.zero_radius = 0.0;
+  o.final_margin = 0.0;
+  return o;
+}
+
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {
   constexpr double kBase = 1000.0;
   constexpr double kBaseN = 4096.0;
@@ -127,13 +138,6 @@ Status ValidateProblem(const OptimizationProblem& p) {
 static Status ValidateWeighting(const SpectrumWeighting& w) {
   auto bad = [](double v, double lo, double hi) { return !std::isfinite(v) || v < lo || v > hi; };
   if (bad(w.exponent, 0.0, 16.0)) return Status::InvalidArgument("weighting exponent must be in [0, 16]");
-  if (w.strip_exponent >= 0.0 && bad(w.strip_exponent, 0.0, 16.0)) {
-    return Status::InvalidArgument("strip exponent must be in [0, 16] (or negative: as exponent)");
-  }
-  if (bad(w.strip_scale, 1e-12, 1e12) || bad(w.low_boost, 1e-12, 1e12)) {
-    return Status::InvalidArgument("weighting scales must be in [1e-12, 1e12]");
-  }
-  if (bad(w.low_radius, 0.0, 1e6)) return Status::InvalidArgument("low radius must be >= 0");
   return Status::Ok();
 }
 
@@ -174,7 +178,7 @@ LossTerms EvaluateLoss(const PointSet& points, const std::vector<double>& arbitr
   const std::vector<double> dirs = AnisotropyDirections(arbitrary_directions);
   const std::vector<Frequency> k = BuildFrequencySet(params, dirs);
   engine.SetFrequencies(k);
-  engine.SetLossWeights(SpectrumLossWeights(k, weighting, params, arbitrary_directions));
+  engine.SetLossWeights(SpectrumLossWeights(k, weighting));
   SpectrumEvaluation eval;
   engine.Evaluate(points, false, &eval);
   SlicedWasserstein sw(static_cast<uint32_t>(points.size()), dirs);
@@ -197,12 +201,7 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   const std::vector<Frequency> k = BuildFrequencySet(result.frequency_params, dirs);
   result.frequency_count = k.size();
   engine.SetFrequencies(k);
-  std::vector<double> sw_weights;
-  if (options.sw_arbitrary_scale != 1.0) {
-    sw_weights.assign(dirs.size(), options.sw_arbitrary_scale);
-    sw_weights[0] = sw_weights[1] = 1.0;  // the axes come first
-  }
-  const SlicedWasserstein sw(problem.n, dirs, sw_weights);
+  const SlicedWasserstein sw(problem.n, dirs);
 
   const double first_lr =
       options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(k);
@@ -217,12 +216,11 @@ StatusOr<OptimizationResult> Optimize(const OptimizationProblem& problem,
   };
   std::vector<Phase> phases;
   const std::vector<double> main_weights =
-      SpectrumLossWeights(k, options.weighting, result.frequency_params, problem.directions);
+      SpectrumLossWeights(k, options.weighting);
   const int warmup_iterations =
       static_cast<int>(std::lround(options.warmup_fraction * max_iterations));
   if (warmup_iterations > 0 && warmup_iterations < max_iterations) {
-    phases.push_back({SpectrumLossWeights(k, options.warmup_weighting, result.frequency_params,
-                                          problem.directions),
+    phases.push_back({SpectrumLossWeights(k, options.warmup_weighting),
                       warmup_iterations});
   }
   phases.push_back({main_weights, max_iterations});

@@ -58,9 +58,8 @@ void SortByProjection(const std::vector<double>& proj, std::vector<uint32_t>* or
 
 }  // namespace
 
-SlicedWasserstein::SlicedWasserstein(uint32_t n, std::vector<double> directions_deg,
-                                     std::vector<double> direction_weights)
-    : n_(n), directions_(std::move(directions_deg)), weights_(std::move(direction_weights)) {
+SlicedWasserstein::SlicedWasserstein(uint32_t n, std::vector<double> directions_deg)
+    : n_(n), directions_(std::move(directions_deg)) {
   for (double deg : directions_) targets_.push_back(WassersteinTargets(n_, deg));
 }
 
@@ -83,18 +82,17 @@ double SlicedWasserstein::Evaluate(const PointSet& points, std::vector<Point2>* 
     }
     SortByProjection(proj, &order);
     const std::vector<double>& t = targets_[k];
-    const double wk = weights_.empty() ? 1.0 : weights_[k];
     double sum = 0.0;
     for (size_t i = 0; i < n; ++i) {
       const double r = proj[order[i]] - t[i];
       sum += r * r;
       if (gradient) {
-        const double g = 2.0 * wk * r * inv_n * inv_dirs;
+        const double g = 2.0 * r * inv_n * inv_dirs;
         (*gradient)[order[i]].x += g * d.x;
         (*gradient)[order[i]].y += g * d.y;
       }
     }
-    total += wk * sum * inv_n;
+    total += sum * inv_n;
   }
   return total * inv_dirs;
 }

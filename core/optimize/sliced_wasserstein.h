@@ -19,12 +19,10 @@ double ProjectionInverseCdf(double u, double deg);
 // the square itself.
 std::vector<double> WassersteinTargets(uint32_t n, double deg);
 
-// L_SW = mean over directions d of w_d (1/N) sum_i (sorted(S.d)_i - T_d,i)^2,
-// with w_d = 1 unless per-direction weights are given.
+// L_SW = mean over directions d of (1/N) sum_i (sorted(S.d)_i - T_d,i)^2.
 class SlicedWasserstein {
  public:
-  SlicedWasserstein(uint32_t n, std::vector<double> directions_deg,
-                    std::vector<double> direction_weights = {});
+  SlicedWasserstein(uint32_t n, std::vector<double> directions_deg);
 
   // Returns the loss; if `gradient` is not null it is resized to N and set to
   // d L_SW / d s_j (sorting is piecewise constant, so this is exact almost
@@ -43,7 +41,6 @@ class SlicedWasserstein {
  private:
   uint32_t n_;
   std::vector<double> directions_;
-  std::vector<double> weights_;  // empty: all 1
   std::vector<std::vector<double>> targets_;
   mutable std::vector<std::vector<uint32_t>> orders_;
 };

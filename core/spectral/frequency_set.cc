@@ -67,7 +67,7 @@ void SortUnique(std::vector<Frequency>* k) {
 
 }  // namespace
 
-FrequencyParams DefaultFrequencyParams(uint32_t n) {
+FrequencyParams SupplementFrequencyParams(uint32_t n) {
   const double dn = std::max<double>(n, 1.0);
   FrequencyParams p;
   if (dn <= kTable1.front().n || dn >= kTable1.back().n) {
@@ -89,6 +89,13 @@ FrequencyParams DefaultFrequencyParams(uint32_t n) {
   }
   p.length = std::max(p.length, 1.0);
   p.radius = std::max(p.radius, 1.5);
+  return p;
+}
+
+FrequencyParams DefaultFrequencyParams(uint32_t n) {
+  FrequencyParams p = SupplementFrequencyParams(n);
+  p.width *= kDefaultWidthScale;
+  p.radius *= kDefaultRadiusScale;
   return p;
 }
 

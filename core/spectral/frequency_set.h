@@ -24,7 +24,7 @@ struct FrequencyParams {
   friend bool operator==(const FrequencyParams&, const FrequencyParams&) = default;
 };
 
-// The parameters alignset uses for N points.
+// The supplement's parameters for N points.
 //
 // For the sizes of the supplement's Table 1 (N = 2^12 .. 2^16) they are the
 // table's values. Between rows, length, width and radius are interpolated
@@ -34,6 +34,17 @@ struct FrequencyParams {
 // keep K meaningful for small N: width never drops below 1 (the strip keeps
 // its central line; length shrinks instead so that length * width still
 // scales with N) and radius never below 1.5.
+FrequencyParams SupplementFrequencyParams(uint32_t n);
+
+// The parameters alignset uses (algorithm version 3): the supplement's, with
+// strips 1.5x as wide and a disk 1.6x the radius. With the weighted loss the
+// lowest frequencies are pushed towards zero; a wider disk then darkens the
+// isotropic low band (disk and triangle integrands, θ + 45° edges: 0.94 ->
+// 0.84 of Owen-Sobol at N = 1024) and a wider strip gives the dark line
+// tolerance to a misestimated direction and darker edges at 0°/90°
+// (README, "Choices: the low-frequency floor"). |K| grows to 1.1-1.9 N.
+inline constexpr double kDefaultWidthScale = 1.5;
+inline constexpr double kDefaultRadiusScale = 1.6;
 FrequencyParams DefaultFrequencyParams(uint32_t n);
 
 // The anisotropy directions of a set with arbitrary directions `arbitrary`:

@@ -43,19 +43,10 @@ TEST(ProfileId, EveryParameterChangesTheId) {
       {"learning_rate", [](auto&, auto& o, auto&, auto&) { o.learning_rate = 1e-3; }},
       {"sw_weight", [](auto&, auto& o, auto&, auto&) { o.sw_weight = 9.0; }},
       {"weight_exponent", [](auto&, auto& o, auto&, auto&) { o.weighting.exponent += 0.5; }},
-      {"weight_strip_exponent", [](auto&, auto& o, auto&, auto&) { o.weighting.strip_exponent = 2.0; }},
-      {"weight_strip_scale", [](auto&, auto& o, auto&, auto&) { o.weighting.strip_scale = 3.0; }},
-      {"weight_low_radius", [](auto&, auto& o, auto&, auto&) { o.weighting.low_radius += 1.0; }},
-      {"weight_low_boost", [](auto&, auto& o, auto&, auto&) { o.weighting.low_boost *= 2.0; }},
-      {"sw_arbitrary_scale", [](auto&, auto& o, auto&, auto&) { o.sw_arbitrary_scale = 2.0; }},
       {"warmup_exponent", [](auto&, auto& o, auto&, auto&) { o.warmup_weighting.exponent += 1.0; }},
-      {"warmup_strip_exponent", [](auto&, auto& o, auto&, auto&) { o.warmup_weighting.strip_exponent = 1.0; }},
-      {"warmup_strip_scale", [](auto&, auto& o, auto&, auto&) { o.warmup_weighting.strip_scale = 2.0; }},
-      {"warmup_low_radius", [](auto&, auto& o, auto&, auto&) { o.warmup_weighting.low_radius = 2.0; }},
-      {"warmup_low_boost", [](auto&, auto& o, auto&, auto&) { o.warmup_weighting.low_boost = 2.0; }},
       {"warmup_fraction", [](auto&, auto& o, auto&, auto&) { o.warmup_fraction = 0.5; }},
       {"final_margin", [](auto&, auto& o, auto&, auto&) { o.final_margin = 0.1; }},
-      {"zero_radius", [](auto&, auto& o, auto&, auto&) { o.zero_radius = 3.0; }},
+      {"zero_radius", [](auto&, auto& o, auto&, auto&) { o.zero_radius += 1.0; }},
       {"stratify_axes", [](auto&, auto& o, auto&, auto&) { o.stratify_axes = !o.stratify_axes; }},
       {"beta1", [](auto&, auto& o, auto&, auto&) { o.beta1 = 0.8; }},
       {"beta2", [](auto&, auto& o, auto&, auto&) { o.beta2 = 0.99; }},
@@ -123,11 +114,8 @@ TEST(ProfileText, CanonicalSerialization) {
   EXPECT_EQ(ProfileText({40.0, 3.0, 12.5}, o, 18446744073709551615ull, 1),
             "alignset-profile-v1;algorithm_version=1;seed=18446744073709551615;length=40;"
             "width=3;radius=12.5;max_iterations=500;learning_rate=0.002;sw_weight=10;"
-            "weight_exponent=0;weight_strip_exponent=-1;weight_strip_scale=1;"
-            "weight_low_radius=0;weight_low_boost=1;warmup_exponent=0;"
-            "warmup_strip_exponent=-1;warmup_strip_scale=1;warmup_low_radius=0;"
-            "warmup_low_boost=1;warmup_fraction=0;stratify_axes=0;zero_radius=0;"
-            "final_margin=0;sw_arbitrary_scale=1;beta1=0.9;beta2=0.999;epsilon=1e-12;"
+            "weight_exponent=2.5;warmup_exponent=1.5;warmup_fraction=0.7;stratify_axes=1;"
+            "zero_radius=3;final_margin=0.4;beta1=0.9;beta2=0.999;epsilon=1e-12;"
             "divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
             "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;anneal_ratio=1;"
             "min_learning_rate=1e-07;");

@@ -100,7 +100,8 @@ TEST(FastEngineTest, MatchesDirectOnAnOptimizedSet) {
   problem.n = 256;
   problem.directions = {30.0};
   problem.seed = 5;
-  OptimizerOptions options;
+  problem.frequency_params = SupplementFrequencyParams(256);
+  OptimizerOptions options = SupplementOptimizerOptions();
   options.max_iterations = 600;
   DirectEngine engine(2);
   auto result = Optimize(problem, options, engine);

@@ -9,11 +9,11 @@ namespace alignset {
 namespace {
 
 TEST(FrequencySet, TableOneSizesUseTheTableParameters) {
-  EXPECT_EQ(DefaultFrequencyParams(4096), (FrequencyParams{256, 5, 24}));
-  EXPECT_EQ(DefaultFrequencyParams(8192), (FrequencyParams{384, 7, 32}));
-  EXPECT_EQ(DefaultFrequencyParams(16384), (FrequencyParams{512, 9, 48}));
-  EXPECT_EQ(DefaultFrequencyParams(32768), (FrequencyParams{768, 13, 56}));
-  EXPECT_EQ(DefaultFrequencyParams(65536), (FrequencyParams{1024, 17, 64}));
+  EXPECT_EQ(SupplementFrequencyParams(4096), (FrequencyParams{256, 5, 24}));
+  EXPECT_EQ(SupplementFrequencyParams(8192), (FrequencyParams{384, 7, 32}));
+  EXPECT_EQ(SupplementFrequencyParams(16384), (FrequencyParams{512, 9, 48}));
+  EXPECT_EQ(SupplementFrequencyParams(32768), (FrequencyParams{768, 13, 56}));
+  EXPECT_EQ(SupplementFrequencyParams(65536), (FrequencyParams{1024, 17, 64}));
 }
 
 TEST(FrequencySet, CountsMatchTableOneWithinFivePercent) {
@@ -21,7 +21,8 @@ TEST(FrequencySet, CountsMatchTableOneWithinFivePercent) {
       {4096, 4303}, {8192, 9169}, {16384, 16099}, {32768, 32708}, {65536, 55741}};
   for (double theta : {15.0, 30.0}) {
     for (const auto& [n, expected] : rows) {
-      const auto k = BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({theta}));
+      const auto k =
+          BuildFrequencySet(SupplementFrequencyParams(n), AnisotropyDirections({theta}));
       EXPECT_NEAR(static_cast<double>(k.size()) / expected, 1.0, 0.05)
           << "N=" << n << " theta=" << theta << " |K|=" << k.size();
     }
@@ -29,16 +30,32 @@ TEST(FrequencySet, CountsMatchTableOneWithinFivePercent) {
 }
 
 TEST(FrequencySet, CountStaysCloseToNForEveryN) {
-  // The supplement keeps |K| ~ N (ratios 0.85..1.12 in Table 1); the rule for
-  // other N must stay in that band.
+  // The supplement keeps |K| ~ N (ratios 0.85..1.12 in Table 1); its rule for
+  // other N must stay in that band, and alignset's wider strips and disk at
+  // a fixed multiple of it, so that the cost per iteration scales like N.
   for (uint32_t n : {16u, 24u, 64u, 100u, 256u, 500u, 1000u, 1024u, 3000u, 5000u, 12000u,
                      20000u, 50000u, 100000u}) {
     for (double theta : {10.0, 30.0, 45.0, 77.0}) {
-      const auto k = BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({theta}));
+      const auto k =
+          BuildFrequencySet(SupplementFrequencyParams(n), AnisotropyDirections({theta}));
       const double ratio = static_cast<double>(k.size()) / n;
       EXPECT_GT(ratio, 0.7) << "N=" << n << " theta=" << theta << " |K|=" << k.size();
       EXPECT_LT(ratio, 1.4) << "N=" << n << " theta=" << theta << " |K|=" << k.size();
+      const auto wide = BuildFrequencySet(DefaultFrequencyParams(n), AnisotropyDirections({theta}));
+      const double wide_ratio = static_cast<double>(wide.size()) / n;
+      EXPECT_GT(wide_ratio, 1.0) << "N=" << n << " theta=" << theta;
+      EXPECT_LT(wide_ratio, 2.2) << "N=" << n << " theta=" << theta;
     }
+  }
+}
+
+TEST(FrequencySet, DefaultsAreTheSupplementsWidened) {
+  for (uint32_t n : {16u, 256u, 1024u, 4096u, 65536u}) {
+    const FrequencyParams s = SupplementFrequencyParams(n);
+    const FrequencyParams d = DefaultFrequencyParams(n);
+    EXPECT_EQ(d.length, s.length);
+    EXPECT_DOUBLE_EQ(d.width, s.width * kDefaultWidthScale);
+    EXPECT_DOUBLE_EQ(d.radius, s.radius * kDefaultRadiusScale);
   }
 }
 
