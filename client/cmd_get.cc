@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "client/commands.h"
+#include "client/patch_file.h"
 #include "client/point_file.h"
 #include "client/progress.h"
 #include "client/service_options.h"
@@ -15,15 +16,27 @@ namespace {
 int Usage(const Status& s) { return ReportError("get", s, kExitUsage); }
 int Failure(const Status& s) { return ReportError("get", s, kExitFailure); }
 
-std::string Join(const std::vector<int>& v) {
+// Served angles as the server reports them exactly (30.25 on the
+// quarter-degree grid, 30 on whole degrees).
+std::string Join(const std::vector<double>& v) {
   std::string s;
-  for (int d : v) s += (s.empty() ? "" : ",") + std::to_string(d);
+  for (double d : v) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.6g", d);
+    s += (s.empty() ? "" : ",") + std::string(buf);
+  }
   return s;
 }
 
 struct GetOptions {
   int64_t n = 0;
   std::vector<double> dirs;
+  // --from-patch FILE: the directions estimated from an integrand patch by
+  // the server's EstimateDirection (--two: also the second direction).
+  std::string from_patch;
+  bool two = false;
+  // One direction's grid: empty, the server's (--angle-step); "1" or "0.25".
+  std::string angle_step;
   std::string out;
   bool quiet = false;
   int64_t realization = 0;
@@ -42,10 +55,15 @@ std::string Comment(const SetInfo& i) {
                 "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s "
                 "realization=%u\nswap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d "
                 "engine=%s seed=%llu algorithm_version=%d",
-                i.n, Join(i.served_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
+                i.n, Join(i.served_exact_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
                 i.inverted, i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
                 static_cast<unsigned long long>(i.seed), i.algorithm_version);
   return comment;
+}
+
+// SetRequest::steps_per_degree: 0 leaves the grid to the server.
+uint32_t StepsPerDegree(const GetOptions& o) {
+  return o.angle_step.empty() ? 0 : o.angle_step == "0.25" ? 4 : 1;
 }
 
 // One set through the streaming call, which shows queue position and
@@ -54,7 +72,7 @@ StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
   Progress progress("optimize");
   bool shown = false;
   const SetRequest request{static_cast<uint32_t>(o.n), o.dirs,
-                           static_cast<uint32_t>(o.realization)};
+                           static_cast<uint32_t>(o.realization), StepsPerDegree(o)};
   auto set = client.WatchAlignedSet(request, [&](const WatchUpdate& u) {
     if (o.quiet) return;
     shown = true;
@@ -75,7 +93,8 @@ StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
 StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOptions& o) {
   std::vector<SetRequest> items;
   for (int64_t i = 0; i < *o.sets; ++i) {
-    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i)});
+    items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i),
+                     StepsPerDegree(o)});
   }
   if (!o.quiet) {
     std::fprintf(stderr, "alignset get: %lld realizations (%lld..%lld) in one call\n",
@@ -99,11 +118,54 @@ StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOption
   return sets;
 }
 
+std::string Degrees(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4f", v);
+  return buf;
+}
+
+// --from-patch: the direction(s) to ask for, from the server's estimate. A
+// patch without a dominant direction is a failure that says so: serving a set
+// for an arbitrary angle would hide it.
+StatusOr<std::vector<double>> DirectionsFromPatch(ServiceClient& client, const GetOptions& o,
+                                                  bool* usage_error) {
+  auto input = ReadPatchFile(o.from_patch);
+  if (!input.ok()) {
+    *usage_error = true;
+    return input.status();
+  }
+  auto reply = input->is_grid
+                   ? client.EstimateDirection(input->grid.width, input->grid.height,
+                                              input->grid.values, o.two)
+                   : client.EstimateDirection(input->samples.points, input->samples.values, o.two);
+  if (!reply.ok()) return reply.status();
+  if (!reply->first.found) {
+    return Status::InvalidArgument(o.from_patch + ": no dominant direction (" + reply->first.reason +
+                                   "); give --dir instead");
+  }
+  std::vector<double> dirs = {reply->first.theta_deg};
+  if (o.two) {
+    if (!reply->has_second || !reply->second.found) {
+      return Status::InvalidArgument(o.from_patch + ": no second direction (" +
+                                     reply->second.reason + "); drop --two");
+    }
+    dirs.push_back(reply->second.theta_deg);
+  }
+  if (!o.quiet) {
+    std::string also = dirs.size() == 2 ? ", theta2 " + Degrees(dirs[1]) : "";
+    std::fprintf(stderr, "alignset get: %s: estimated theta %s%s (kappa %.4g, confidence %.3f)\n",
+                 o.from_patch.c_str(), Degrees(dirs[0]).c_str(), also.c_str(), reply->first.kappa,
+                 reply->first.confidence);
+  }
+  return dirs;
+}
+
 // The one-direction space: what a table-driven renderer loads once and
 // aligns itself (method.md, Algorithm 1).
 int RunGetSpace(const GetOptions& o) {
-  if (!o.dirs.empty() || o.sets) {
-    return Usage(Status::InvalidArgument("--space 1dir takes no --dir and no -m (it is the 46 canonical sets)"));
+  if (!o.dirs.empty() || !o.from_patch.empty() || o.sets || !o.angle_step.empty()) {
+    return Usage(Status::InvalidArgument(
+        "--space 1dir takes no --dir, --from-patch, -m or --angle-step (it is the 46 canonical sets)"));
   }
   auto client = Connect(o.service);
   if (!client.ok()) return Usage(client.status());
@@ -131,10 +193,14 @@ int RunGetSpace(const GetOptions& o) {
   return kExitOk;
 }
 
-int RunGet(const GetOptions& o) {
+int RunGet(GetOptions o) {
   if (!o.space.empty()) return RunGetSpace(o);
-  if (o.dirs.empty()) {
-    return Usage(Status::InvalidArgument("give --dir DEG (once or twice), or --space 1dir"));
+  if (o.dirs.empty() == o.from_patch.empty()) {
+    return Usage(Status::InvalidArgument(
+        "give --dir (degrees, edge normal) or --from-patch FILE, or --space 1dir"));
+  }
+  if (o.two && o.from_patch.empty()) {
+    return Usage(Status::InvalidArgument("--two goes with --from-patch (with --dir, give it twice)"));
   }
   if (o.dirs.size() > 2) {
     return Usage(Status::InvalidArgument("give one or two --dir angles (degrees, edge normal), got " +
@@ -148,6 +214,12 @@ int RunGet(const GetOptions& o) {
   }
   auto client = Connect(o.service);
   if (!client.ok()) return Usage(client.status());
+  if (!o.from_patch.empty()) {
+    bool usage_error = false;
+    auto dirs = DirectionsFromPatch(**client, o, &usage_error);
+    if (!dirs.ok()) return usage_error ? Usage(dirs.status()) : Failure(dirs.status());
+    o.dirs = std::move(dirs).value();
+  }
 
   std::vector<AlignedSet> sets;
   if (o.sets) {
@@ -174,7 +246,7 @@ int RunGet(const GetOptions& o) {
   const SetInfo& i = sets[0].info;
   std::fprintf(report, "N              %u\n", i.n);
   std::fprintf(report, "directions     0, 90, %s (served; deg, spectral = edge normal)\n",
-               Join(i.served_deg).c_str());
+               Join(i.served_exact_deg).c_str());
   std::fprintf(report, "canonical key  %s (index %llu)\n", i.key_text.c_str(),
                static_cast<unsigned long long>(i.key_index));
   std::fprintf(report, "alignment      swap %s, invert x %s\n", i.swapped ? "yes" : "no",
@@ -201,9 +273,15 @@ void AddGetCommand(CLI::App& app) {
                            "an aligned set from alignset-server (.npy or UTK text by extension)");
   // The server checks N against its own maximum; here only the type.
   c->add_option("-n,--n", o->n, "number of points")->required()->check(IntegerIn(0, UINT32_MAX));
-  c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
-      ->allow_extra_args(false)
-      ->check(FiniteNumber());
+  CLI::Option* dir =
+      c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
+          ->allow_extra_args(false)
+          ->check(FiniteNumber());
+  c->add_option("--from-patch", o->from_patch,
+                "estimate the direction from an integrand patch first (as `alignset direction`\n"
+                "reads it: .npy (H, W) grid or 'x y f' text) and ask for that")
+      ->excludes(dir);
+  c->add_flag("--two", o->two, "with --from-patch: the two strongest directions (4-direction set)");
   c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")
       ->required();
   c->add_option("-r,--realization", o->realization,
@@ -217,6 +295,9 @@ void AddGetCommand(CLI::App& app) {
                  "instead of --dir: the whole one-direction space, the 46 canonical sets\n"
                  "phi = 0..45 ((46, N, 2) .npy; a table for a renderer that aligns itself)")
       ->check(CLI::IsMember({"1dir"}));
+  c->add_option("--angle-step", o->angle_step,
+                "grid one direction is served on: 0.25 or 1 degree (default: the server's)")
+      ->check(CLI::IsMember({"1", "0.25"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

@@ -34,6 +34,7 @@ struct PrecomputeOptions {
   std::vector<std::string> keys;
   std::string shard;
   int64_t realizations = 1;
+  std::string angle_step = "1";  // the one-direction grid: "1" (46 keys) or "0.25" (181)
   ServiceOptions service;
 };
 
@@ -41,6 +42,7 @@ int RunPrecompute(const PrecomputeOptions& o) {
   PrecomputeSpec spec;
   for (int64_t n : o.n) spec.n.push_back(static_cast<uint32_t>(n));
   spec.realizations = static_cast<uint32_t>(o.realizations);
+  spec.steps_per_degree = o.angle_step == "0.25" ? 4 : 1;
   const std::string space = !o.space.empty() ? o.space : o.keys.empty() ? "1dir" : "keys";
   if (space == "1dir") {
     spec.space = 1;
@@ -115,6 +117,11 @@ void AddPrecomputeCommand(CLI::App& app) {
                 "realizations 0 .. R-1 of every key (each an independent set)")
       ->capture_default_str()
       ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  c->add_option("--angle-step", o->angle_step,
+                "grid of the one-direction keys in degrees: 1 (the 46 keys) or 0.25 (181 keys,\n"
+                "what a default server serves one direction on)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"1", "0.25"}));
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }

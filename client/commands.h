@@ -12,6 +12,8 @@ void AddEvaluateCommand(CLI::App& app);
 void AddSampleCommand(CLI::App& app);
 void AddAlignCommand(CLI::App& app);
 void AddVarianceCommand(CLI::App& app);
+// The principal direction of an integrand patch (core/analysis).
+void AddDirectionCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 void AddCacheCommand(CLI::App& app);

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   AddSampleCommand(app);
   AddAlignCommand(app);
   AddVarianceCommand(app);
+  AddDirectionCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
 #endif

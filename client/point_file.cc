@@ -12,6 +12,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "client/npy_array.h"
+
 namespace alignset::cli {
 namespace {
 
@@ -27,11 +29,7 @@ Format FormatOf(const std::string& path) {
   return Format::kText;
 }
 
-std::string Shape(const std::vector<size_t>& dims) {
-  std::string s = "(";
-  for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
-  return s + (dims.size() == 1 ? ",)" : ")");
-}
+std::string Shape(const std::vector<size_t>& dims) { return NpyShapeText(dims); }
 
 // ------------------------------------------------------------------ write
 
@@ -136,97 +134,15 @@ Status CheckInside(const std::string& path, const std::vector<PointSet>& sets) {
   return Status::Ok();
 }
 
-// The header dictionary of a .npy file: dtype, order, shape.
-struct NpyHeaderInfo {
-  std::string descr;
-  bool fortran_order = false;
-  std::vector<size_t> shape;
-};
-
-StatusOr<NpyHeaderInfo> ParseNpyHeader(const std::string& h, const std::string& path) {
-  NpyHeaderInfo info;
-  auto value_of = [&](const std::string& key) -> std::string {
-    const size_t k = h.find("'" + key + "'");
-    if (k == std::string::npos) return "";
-    const size_t colon = h.find(':', k);
-    return colon == std::string::npos ? "" : h.substr(colon + 1);
-  };
-  const std::string descr = value_of("descr");
-  const size_t q1 = descr.find('\'');
-  const size_t q2 = q1 == std::string::npos ? q1 : descr.find('\'', q1 + 1);
-  if (q2 == std::string::npos) return Status::InvalidArgument(path + ": .npy header without a dtype");
-  info.descr = descr.substr(q1 + 1, q2 - q1 - 1);
-  const std::string order = value_of("fortran_order");
-  info.fortran_order = order.find("True") < order.find("False");
-  const std::string shape = value_of("shape");
-  const size_t open = shape.find('('), close = shape.find(')');
-  if (open == std::string::npos || close == std::string::npos || close < open) {
-    return Status::InvalidArgument(path + ": .npy header without a shape");
-  }
-  std::stringstream dims(shape.substr(open + 1, close - open - 1));
-  for (std::string d; std::getline(dims, d, ',');) {
-    if (d.find_first_not_of(" ") == std::string::npos) continue;
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(d.c_str(), &end, 10);
-    if (end == d.c_str()) return Status::InvalidArgument(path + ": bad .npy shape '" + shape + "'");
-    info.shape.push_back(static_cast<size_t>(v));
-  }
-  return info;
-}
-
 StatusOr<std::vector<PointSet>> ParseNpy(const std::string& data, const std::string& path) {
-  if (data.size() < 10 || data.compare(0, 6, "\x93NUMPY") != 0) {
-    return Status::InvalidArgument(path + ": not a .npy file");
-  }
-  const auto byte = [&](size_t i) { return static_cast<size_t>(static_cast<unsigned char>(data[i])); };
-  // Version 1 has a 2-byte header length, versions 2 and 3 a 4-byte one.
-  const size_t len_bytes = byte(6) == 1 ? 2 : 4;
-  if (data.size() < 8 + len_bytes) return Status::InvalidArgument(path + ": truncated .npy header");
-  size_t hlen = 0;
-  for (size_t i = 0; i < len_bytes; ++i) hlen |= byte(8 + i) << (8 * i);
-  const size_t body_at = 8 + len_bytes + hlen;
-  if (data.size() < body_at) return Status::InvalidArgument(path + ": truncated .npy header");
-  auto info = ParseNpyHeader(data.substr(8 + len_bytes, hlen), path);
-  if (!info.ok()) return info.status();
-  size_t item = 0;
-  if (info->descr == "<f8") {
-    item = 8;
-  } else if (info->descr == "<f4") {
-    item = 4;
-  } else {
-    return Status::InvalidArgument(path + ": dtype '" + info->descr +
-                                   "' is not supported; save little-endian float64 ('<f8')");
-  }
-  const std::vector<size_t>& dims = info->shape;
-  size_t count = 1;
-  for (size_t d : dims) count *= d;
-  if (data.size() - body_at != count * item) {
-    return Status::InvalidArgument(path + ": .npy body holds " + std::to_string(data.size() - body_at) +
-                                   " bytes, its shape " + Shape(dims) + " needs " +
-                                   std::to_string(count * item));
-  }
-  const char* body = data.data() + body_at;
-  // Element at a multi-index, in either memory order.
+  auto array = ParseNpyArray(data, path);
+  if (!array.ok()) return array.status();
+  const std::vector<size_t>& dims = array->shape;
+  // Element at a multi-index (the values are in C order).
   auto at = [&](std::initializer_list<size_t> idx) {
-    size_t flat = 0;
-    if (info->fortran_order) {
-      size_t stride = 1, k = 0;
-      for (size_t i : idx) {
-        flat += i * stride;
-        stride *= dims[k++];
-      }
-    } else {
-      size_t k = 0;
-      for (size_t i : idx) flat = flat * dims[k++] + i;
-    }
-    if (item == 8) {
-      double v;
-      std::memcpy(&v, body + flat * 8, 8);
-      return v;
-    }
-    float v;
-    std::memcpy(&v, body + flat * 4, 4);
-    return static_cast<double>(v);
+    size_t flat = 0, k = 0;
+    for (size_t i : idx) flat = flat * dims[k++] + i;
+    return array->values[flat];
   };
   std::vector<PointSet> sets;
   if (dims.size() == 2 && dims[1] == 2) {  // (N, 2): the documented layout

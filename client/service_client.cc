@@ -68,6 +68,13 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   SetInfo i;
   i.requested_deg.assign(md.requested_deg().begin(), md.requested_deg().end());
   i.served_deg.assign(md.served_deg().begin(), md.served_deg().end());
+  i.served_exact_deg.assign(md.served_exact_deg().begin(), md.served_exact_deg().end());
+  // A server from before the quarter-degree grid sends only whole degrees.
+  if (i.served_exact_deg.empty()) i.served_exact_deg.assign(i.served_deg.begin(), i.served_deg.end());
+  i.phi1_exact = md.key().phi1_exact_deg();
+  if (i.phi1_exact == 0.0) i.phi1_exact = md.key().phi1_deg();
+  i.steps_per_degree =
+      md.key().steps_per_degree() == 0 ? 1 : static_cast<int>(md.key().steps_per_degree());
   i.n = n;
   i.direction_count = static_cast<int>(md.key().direction_count());
   i.phi1 = md.key().phi1_deg();
@@ -103,6 +110,7 @@ ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
   m.requests_watch = r.requests_watch();
   m.requests_precompute = r.requests_precompute();
   m.requests_samples = r.requests_samples();
+  m.requests_estimate = r.requests_estimate();
   m.requests_invalid = r.requests_invalid();
   m.cache_hits_memory = r.cache_hits_memory();
   m.cache_hits_db = r.cache_hits_db();
@@ -229,7 +237,19 @@ v1::AlignedSetRequest MakeRequest(const SetRequest& r) {
   req.set_n(r.n);
   for (double d : r.directions_deg) req.add_directions_deg(d);
   req.set_realization(r.realization);
+  req.set_steps_per_degree(r.steps_per_degree);
   return req;
+}
+
+EstimatedDirection ToDirection(const v1::EstimatedDirection& d) {
+  EstimatedDirection e;
+  e.found = d.status() == v1::DIRECTION_FOUND;
+  e.theta_deg = d.theta_deg();
+  e.kappa = d.kappa();
+  e.confidence = d.confidence();
+  e.contrast = d.contrast();
+  e.reason = d.reason();
+  return e;
 }
 
 StatusOr<AlignedSet> FromResponse(v1::AlignedSetResponse* resp) {
@@ -371,6 +391,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_shard_index(spec.shard_index);
   req.set_shard_count(spec.shard_count);
   req.set_realizations(spec.realizations);
+  req.set_steps_per_degree(spec.steps_per_degree);
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->Precompute(&ctx, req);
@@ -445,6 +466,51 @@ StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const
                    k.profile(), k.text()});
   }
   return out;
+}
+
+namespace {
+
+StatusOr<DirectionReply> CallEstimate(ServiceClient::Impl* impl, const CallOptions& call,
+                                      const v1::EstimateDirectionRequest& req) {
+  grpc::ClientContext ctx;
+  impl->Prepare(&ctx, true, call);
+  v1::EstimateDirectionResponse resp;
+  grpc::Status s = impl->stub->EstimateDirection(&ctx, req, &resp);
+  if (!s.ok()) return impl->Fail(s);
+  DirectionReply r;
+  r.first = ToDirection(resp.first());
+  r.has_second = resp.has_second();
+  if (r.has_second) r.second = ToDirection(resp.second());
+  r.max_radius = resp.max_radius();
+  return r;
+}
+
+}  // namespace
+
+StatusOr<DirectionReply> ServiceClient::EstimateDirection(int width, int height,
+                                                          const std::vector<double>& values,
+                                                          bool second, const CallOptions& call) {
+  if (width < 0 || height < 0) return Status::InvalidArgument("negative grid size");
+  v1::EstimateDirectionRequest req;
+  req.mutable_grid()->set_width(static_cast<uint32_t>(width));
+  req.mutable_grid()->set_height(static_cast<uint32_t>(height));
+  req.mutable_grid()->mutable_values()->Add(values.begin(), values.end());
+  req.set_second(second);
+  return CallEstimate(impl_.get(), call, req);
+}
+
+StatusOr<DirectionReply> ServiceClient::EstimateDirection(const PointSet& points,
+                                                          const std::vector<double>& values,
+                                                          bool second, const CallOptions& call) {
+  v1::EstimateDirectionRequest req;
+  v1::ScatteredSamples* s = req.mutable_samples();
+  for (const Point2& p : points) {
+    s->add_x(p.x);
+    s->add_y(p.y);
+  }
+  s->mutable_f()->Add(values.begin(), values.end());
+  req.set_second(second);
+  return CallEstimate(impl_.get(), call, req);
 }
 
 StatusOr<bool> ServiceClient::Healthy(const CallOptions& call) {

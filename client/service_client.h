@@ -14,6 +14,8 @@ using alignset::CacheInfo;
 using alignset::CallOptions;
 using alignset::ConnectOptions;
 using alignset::DecodePoints;
+using alignset::DirectionReply;
+using alignset::EstimatedDirection;
 using alignset::kDefaultServerAddress;
 using alignset::PrecomputeSpec;
 using alignset::PrecomputeUpdate;

@@ -76,6 +76,18 @@ const std::vector<Flag>& Flags() {
        StringFlag(&ServerConfig::port_file)},
       {"log-level", "L    trace|debug|info|warn|error|off (default info)",
        StringFlag(&ServerConfig::log_level)},
+      {"angle-step", "DEG  grid of one-direction requests: 0.25 (default, 181 keys) or 1 (46 keys)",
+       [](ServerConfig& c, const std::string& v) {
+         auto s = ParseFiniteDouble(v, "--angle-step");
+         if (s.ok() && *s == 0.25) {
+           c.angle_grid = AngleGrid::kQuarterDegree;
+         } else if (s.ok() && *s == 1.0) {
+           c.angle_grid = AngleGrid::kWholeDegree;
+         } else {
+           return Status::InvalidArgument("--angle-step: '" + v + "' is neither 0.25 nor 1");
+         }
+         return Status::Ok();
+       }},
       {"shutdown-grace", "S  seconds running calls get after SIGTERM (default 5)",
        [](ServerConfig& c, const std::string& v) {
          auto s = ParseFiniteDouble(v, "--shutdown-grace");

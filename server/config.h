@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "core/align/canonical.h"
 #include "core/spectral/spectral_engine.h"
 #include "core/util/status.h"
 
@@ -36,6 +37,10 @@ struct ServerConfig {
   // Written with the bound port once listening (for --listen host:0).
   std::string port_file;
   std::string log_level = "info";
+  // The grid one-direction requests are served on when they do not choose:
+  // quarter degrees (--angle-step 0.25, 181 keys) or whole degrees (1, the
+  // 46 keys of Algorithm 1).
+  AngleGrid angle_grid = AngleGrid::kQuarterDegree;
   // Seconds that running work may take to finish after SIGTERM/SIGINT before
   // in-flight calls are cancelled.
   double shutdown_grace_seconds = 5.0;

@@ -12,6 +12,7 @@ struct MetricsSnapshot {
   uint64_t requests_watch = 0;
   uint64_t requests_precompute = 0;
   uint64_t requests_samples = 0;
+  uint64_t requests_estimate = 0;
   uint64_t requests_invalid = 0;
   uint64_t cache_hits_memory = 0;
   uint64_t cache_hits_db = 0;
@@ -38,6 +39,7 @@ class Metrics {
   std::atomic<uint64_t> requests_watch{0};
   std::atomic<uint64_t> requests_precompute{0};
   std::atomic<uint64_t> requests_samples{0};
+  std::atomic<uint64_t> requests_estimate{0};
   std::atomic<uint64_t> requests_invalid{0};
   std::atomic<uint64_t> cache_hits_memory{0};
   std::atomic<uint64_t> cache_hits_db{0};
@@ -63,6 +65,7 @@ class Metrics {
     s.requests_watch = requests_watch.load();
     s.requests_precompute = requests_precompute.load();
     s.requests_samples = requests_samples.load();
+    s.requests_estimate = requests_estimate.load();
     s.requests_invalid = requests_invalid.load();
     s.cache_hits_memory = cache_hits_memory.load();
     s.cache_hits_db = cache_hits_db.load();

@@ -274,8 +274,8 @@ void Scheduler::RunJob(const std::shared_ptr<Job>& job, SpectralEngine* engine) 
 
   OptimizationProblem problem;
   problem.n = key.n;
-  problem.directions = {static_cast<double>(key.dirs.phi1)};
-  if (key.dirs.count == 2) problem.directions.push_back(static_cast<double>(key.dirs.phi2));
+  problem.directions = {Phi1Degrees(key.dirs)};
+  if (key.dirs.count == 2) problem.directions.push_back(Phi2Degrees(key.dirs));
   problem.seed = RealizationSeed(options_.seed, key.realization);
   metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
   spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),

@@ -9,6 +9,7 @@
 
 #include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
+#include "server/direction_request.h"
 #include "server/samples.h"
 #include "server/validation.h"
 
@@ -99,15 +100,28 @@ grpc::Status AlignSetService::Invalid(const Status& s, const char* rpc) const {
   return ToGrpc(s);
 }
 
-void AlignSetService::FillKey(const storage::SetKey& key, v1::CanonicalKey* out) const {
+void AlignSetService::FillKey(const storage::SetKey& key, v1::CanonicalKey* out,
+                              AngleGrid grid) const {
   out->set_n(key.n);
   out->set_direction_count(static_cast<uint32_t>(key.dirs.count));
   out->set_phi1_deg(key.dirs.phi1);
   out->set_phi2_deg(key.dirs.count == 2 ? key.dirs.phi2 : key.dirs.phi1);
+  out->set_phi1_exact_deg(Phi1Degrees(key.dirs));
   out->set_profile(key.profile);
-  if (auto index = CanonicalKeyIndex(key.dirs); index.ok()) out->set_index(*index);
+  if (key.dirs.count == 2 || key.dirs.phi1_quarter != 0) {
+    grid = key.dirs.count == 2 ? AngleGrid::kWholeDegree : AngleGrid::kQuarterDegree;
+  }
+  out->set_steps_per_degree(static_cast<uint32_t>(StepsPerDegree(grid)));
+  if (auto index = CanonicalKeyIndex(key.dirs, grid); index.ok()) out->set_index(*index);
   out->set_text(KeyString(key));
   out->set_realization(key.realization);
+}
+
+StatusOr<Canonicalization> AlignSetService::Canonicalize(const v1::AlignedSetRequest& req) const {
+  auto grid = ResolveAngleGrid(req.steps_per_degree(), config_.angle_grid);
+  if (!grid.ok()) return grid.status();
+  const std::vector<double> dirs(req.directions_deg().begin(), req.directions_deg().end());
+  return ValidateAlignedSetRequest(req.n(), dirs, config_.max_n, *grid);
 }
 
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
@@ -119,7 +133,8 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   v1::SetMetadata* md = out->mutable_metadata();
   for (double d : canon.requested_deg) md->add_requested_deg(d);
   for (int d : canon.served_deg) md->add_served_deg(d);
-  FillKey(key, md->mutable_key());
+  for (double d : canon.served_exact_deg) md->add_served_exact_deg(d);
+  FillKey(key, md->mutable_key(), canon.grid);
   md->set_swapped(canon.ops.swap);
   md->set_inverted(canon.ops.invert);
   md->set_inverted_y(canon.ops.invert_y);
@@ -148,8 +163,7 @@ grpc::Status AlignSetService::GetAlignedSet(grpc::ServerContext* ctx,
                                             v1::AlignedSetResponse* resp) {
   metrics_->requests_get.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
-  const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
-  auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
+  auto canon = Canonicalize(*req);
   if (!canon.ok()) return Invalid(canon.status(), "GetAlignedSet");
   if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "GetAlignedSet");
   const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
@@ -174,8 +188,7 @@ grpc::Status AlignSetService::WatchAlignedSet(grpc::ServerContext* ctx,
                                               grpc::ServerWriter<v1::WatchEvent>* writer) {
   metrics_->requests_watch.fetch_add(1, std::memory_order_relaxed);
   if (auto a = Authorize(ctx); !a.ok()) return a;
-  const std::vector<double> dirs(req->directions_deg().begin(), req->directions_deg().end());
-  auto canon = ValidateAlignedSetRequest(req->n(), dirs, config_.max_n);
+  auto canon = Canonicalize(*req);
   if (!canon.ok()) return Invalid(canon.status(), "WatchAlignedSet");
   if (Status r = ValidateRealization(req->realization()); !r.ok()) return Invalid(r, "WatchAlignedSet");
   const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
@@ -236,6 +249,10 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     if (Status s = ValidatePointCount(n, config_.max_n); !s.ok()) return Invalid(s, "Precompute");
   }
   std::vector<CanonicalDirections> space;
+  // 0 means whole degrees here: the 46-key space and its order stay what
+  // they were for every existing client.
+  auto grid = ResolveAngleGrid(req->steps_per_degree(), AngleGrid::kWholeDegree);
+  if (!grid.ok()) return Invalid(grid.status(), "Precompute");
   switch (req->space()) {
     case v1::ONE_DIRECTION:
     case v1::TWO_DIRECTIONS: {
@@ -243,7 +260,10 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         return Invalid(Status::InvalidArgument("explicit keys need space = EXPLICIT"), "Precompute");
       }
       const int count = req->space() == v1::ONE_DIRECTION ? 1 : 2;
-      for (size_t i = 0; i < CanonicalKeyCount(count); ++i) space.push_back(CanonicalKeyAt(count, i));
+      const AngleGrid g = count == 1 ? *grid : AngleGrid::kWholeDegree;
+      for (size_t i = 0; i < CanonicalKeyCount(count, g); ++i) {
+        space.push_back(CanonicalKeyAt(count, i, g));
+      }
       break;
     }
     case v1::EXPLICIT: {
@@ -252,7 +272,10 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       }
       for (const auto& k : req->keys()) {
         std::vector<double> d(k.directions_deg().begin(), k.directions_deg().end());
-        auto canon = ValidateAlignedSetRequest(req->n(0), d, config_.max_n);
+        if (!k.exact_directions_deg().empty()) {
+          d.assign(k.exact_directions_deg().begin(), k.exact_directions_deg().end());
+        }
+        auto canon = ValidateAlignedSetRequest(req->n(0), d, config_.max_n, *grid);
         if (!canon.ok()) return Invalid(canon.status(), "Precompute");
         space.push_back(canon->key);
       }
@@ -295,7 +318,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     p.set_estimated_seconds_left(
         p.done() > 0 ? p.elapsed_seconds() / static_cast<double>(p.done()) * p.remaining()
                      : (p.remaining() == 0 ? 0.0 : -1.0));
-    if (key) FillKey(*key, p.mutable_last_key());
+    if (key) FillKey(*key, p.mutable_last_key(), *grid);
     p.set_last_error(error);
     if (!force && Clock::now() - last_sent < std::chrono::milliseconds(100)) return;
     last_sent = Clock::now();
@@ -405,12 +428,35 @@ grpc::Status AlignSetService::GetSamples(grpc::ServerContext* ctx, const v1::Sam
   return grpc::Status::OK;
 }
 
+grpc::Status AlignSetService::EstimateDirection(grpc::ServerContext* ctx,
+                                                const v1::EstimateDirectionRequest* req,
+                                                v1::EstimateDirectionResponse* resp) {
+  metrics_->requests_estimate.fetch_add(1, std::memory_order_relaxed);
+  if (auto a = Authorize(ctx); !a.ok()) return a;
+  auto input = ParseDirectionRequest(*req);
+  if (!input.ok()) return Invalid(input.status(), "EstimateDirection");
+  auto estimate = RunDirectionEstimate(*input);
+  if (!estimate.ok()) {
+    if (estimate.status().code() == Status::Code::kInvalidArgument) {
+      return Invalid(estimate.status(), "EstimateDirection");
+    }
+    return ToGrpc(estimate.status());
+  }
+  FillDirectionResponse(*estimate, resp);
+  spdlog::debug("EstimateDirection: {} -> {}", input->is_grid ? "grid" : "samples",
+                estimate->first.status == DirectionStatus::kFound
+                    ? std::to_string(estimate->first.theta_deg)
+                    : estimate->first.reason);
+  return grpc::Status::OK;
+}
+
 void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   const MetricsSnapshot s = metrics_->Snapshot(scheduler_->queue_length(), scheduler_->running());
   out->set_requests_get(s.requests_get);
   out->set_requests_watch(s.requests_watch);
   out->set_requests_precompute(s.requests_precompute);
   out->set_requests_samples(s.requests_samples);
+  out->set_requests_estimate(s.requests_estimate);
   out->set_requests_invalid(s.requests_invalid);
   out->set_cache_hits_memory(s.cache_hits_memory);
   out->set_cache_hits_db(s.cache_hits_db);

@@ -39,12 +39,19 @@ class AlignSetService final : public v1::AlignSet::Service {
                               v1::ListCachedSetsResponse* resp) override;
   grpc::Status GetMetrics(grpc::ServerContext* ctx, const v1::MetricsRequest* req,
                           v1::MetricsResponse* resp) override;
+  grpc::Status EstimateDirection(grpc::ServerContext* ctx, const v1::EstimateDirectionRequest* req,
+                                 v1::EstimateDirectionResponse* resp) override;
 
  private:
   grpc::Status Authorize(grpc::ServerContext* ctx) const;
   grpc::Status Invalid(const Status& s, const char* rpc) const;
   void FillMetrics(v1::MetricsResponse* out) const;
-  void FillKey(const storage::SetKey& key, v1::CanonicalKey* out) const;
+  // `grid`: the key space whose order `index` is reported in (a key off
+  // whole degrees is always in the quarter-degree space).
+  void FillKey(const storage::SetKey& key, v1::CanonicalKey* out,
+               AngleGrid grid = AngleGrid::kWholeDegree) const;
+  // An aligned-set request's canonicalization on its grid.
+  StatusOr<Canonicalization> Canonicalize(const v1::AlignedSetRequest& req) const;
   void FillSet(const Canonicalization& canon, const storage::SetKey& key,
                const CanonicalEntry& entry, bool from_cache, v1::AlignedSetResponse* out) const;
 

@@ -61,6 +61,7 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
       item.request.set_n(req->space_n());
       item.request.add_directions_deg(CanonicalKeyAt(1, i).phi1);
       item.request.set_realization(req->space_realization());
+      item.request.set_steps_per_degree(1);  // the 46 whole-degree keys
       items.push_back(std::move(item));
     }
   } else {
@@ -80,9 +81,7 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
 
   // Every ticket first (optimizations start in parallel), then the waits.
   for (BatchItemState& item : items) {
-    const std::vector<double> dirs(item.request.directions_deg().begin(),
-                                   item.request.directions_deg().end());
-    auto canon = ValidateAlignedSetRequest(item.request.n(), dirs, config_.max_n);
+    auto canon = Canonicalize(item.request);
     if (!canon.ok()) {
       metrics_->requests_invalid.fetch_add(1, std::memory_order_relaxed);
       item.status = canon.status();

@@ -24,6 +24,20 @@ Status ValidatePointCount(uint32_t n, uint32_t max_n) {
 StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
                                                      const std::vector<double>& directions_deg,
                                                      uint32_t max_n) {
+  return ValidateAlignedSetRequest(n, directions_deg, max_n, AngleGrid::kWholeDegree);
+}
+
+StatusOr<AngleGrid> ResolveAngleGrid(uint32_t steps_per_degree, AngleGrid fallback) {
+  if (steps_per_degree == 0) return fallback;
+  if (steps_per_degree == 1) return AngleGrid::kWholeDegree;
+  if (steps_per_degree == 4) return AngleGrid::kQuarterDegree;
+  return Status::InvalidArgument("steps_per_degree must be 0 (server default), 1 or 4, got " +
+                                 std::to_string(steps_per_degree));
+}
+
+StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
+                                                     const std::vector<double>& directions_deg,
+                                                     uint32_t max_n, AngleGrid grid) {
   if (Status s = ValidatePointCount(n, max_n); !s.ok()) return s;
   if (directions_deg.empty() || directions_deg.size() > 2) {
     return Status::InvalidArgument(
@@ -40,7 +54,7 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
                                      std::to_string(directions_deg[i]) + " is too large");
     }
   }
-  return Canonicalize(directions_deg);
+  return Canonicalize(directions_deg, grid);
 }
 
 }  // namespace alignset::server

@@ -16,9 +16,15 @@ Status ValidateKey(const SetKey& key) {
     if (d.phi1 < 0 || d.phi1 > 45 || d.phi2 != d.phi1) {
       return Status::InvalidArgument("a one-direction key needs phi1 in [0, 45] and phi2 == phi1");
     }
+    if (d.phi1_quarter < 0 || d.phi1_quarter > 3 || (d.phi1 == 45 && d.phi1_quarter != 0)) {
+      return Status::InvalidArgument("a one-direction key's angle is a multiple of 1/4 degree in [0, 45]");
+    }
   } else if (d.count == 2) {
     if (d.phi1 < 0 || d.phi1 > d.phi2 || d.phi2 >= 180) {
       return Status::InvalidArgument("a two-direction key needs 0 <= phi1 <= phi2 < 180");
+    }
+    if (d.phi1_quarter != 0) {
+      return Status::InvalidArgument("a two-direction key has whole degrees");
     }
   } else {
     return Status::InvalidArgument("a key has 1 or 2 arbitrary directions, not " +
@@ -45,7 +51,7 @@ std::string KeyToString(const SetKey& key) {
   s += " dirs=";
   s += std::to_string(key.dirs.count);
   s += ':';
-  s += std::to_string(key.dirs.phi1);
+  s += FormatGridAngle(Phi1Degrees(key.dirs));
   if (key.dirs.count == 2) {
     s += ',';
     s += std::to_string(key.dirs.phi2);

@@ -37,11 +37,13 @@ struct SetKey {
 };
 
 // Checks a key at the boundary: n in [kMinPoints, kMaxPoints]; count 1 with
-// phi1 in [0, 45] and phi2 == phi1, or count 2 with 0 <= phi1 <= phi2 < 180;
-// profile 1..64 characters of [A-Za-z0-9._-]; realization <= kMaxRealization.
+// phi1 in [0, 45], phi2 == phi1 and a quarter of 0..3 (0 at 45), or count 2
+// with 0 <= phi1 <= phi2 < 180 in whole degrees; profile 1..64 characters of
+// [A-Za-z0-9._-]; realization <= kMaxRealization.
 Status ValidateKey(const SetKey& key);
-// "n=4096 dirs=1:30 profile=0123456789abcdef", for messages and logs; a
-// realization r > 0 adds " r=R" before the profile.
+// "n=4096 dirs=1:30 profile=0123456789abcdef" ("dirs=1:30.25" on the
+// quarter-degree grid), for messages and logs; a realization r > 0 adds
+// " r=R" before the profile.
 std::string KeyToString(const SetKey& key);
 
 struct SetRecord {

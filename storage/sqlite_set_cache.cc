@@ -53,10 +53,20 @@ constexpr const char* kKeyWhere =
 constexpr const char* kOrder = " ORDER BY n, dir_count, phi1, phi2, realization, profile";
 constexpr size_t kMaxEngineName = 64;
 
+// The phi1 column holds the key's first angle in degrees. A whole-degree key
+// is bound as an INTEGER, exactly as before the quarter-degree grid, so the
+// rows of existing caches keep their keys; a quarter-degree key (30.25) is
+// bound as a REAL, which the column's INTEGER affinity stores as REAL since
+// it has no integer value. SQLite compares INTEGER and REAL numerically, so
+// one primary key and one ORDER BY cover both, and no migration is needed.
 void BindKey(Stmt& s, const SetKey& key) {
   s.BindInt(1, key.n);
   s.BindInt(2, key.dirs.count);
-  s.BindInt(3, key.dirs.phi1);
+  if (key.dirs.phi1_quarter == 0) {
+    s.BindInt(3, key.dirs.phi1);
+  } else {
+    s.BindDouble(3, Phi1Degrees(key.dirs));
+  }
   s.BindInt(4, key.dirs.phi2);
   s.BindInt(5, key.realization);
   s.BindText(6, key.profile);
@@ -67,7 +77,13 @@ SetKey KeyFromRow(const Stmt& s) {
   const int64_t n = s.Int(0);
   k.n = (n < 0 || n > UINT32_MAX) ? 0 : static_cast<uint32_t>(n);
   k.dirs.count = static_cast<int>(s.Int(1));
-  k.dirs.phi1 = static_cast<int>(s.Int(2));
+  // Whole degrees and quarters are exact in a double; anything else (not
+  // written by alignset) keeps a quarter of -1, which ValidateKey refuses.
+  const double phi1 = s.Double(2);
+  const double whole = std::floor(phi1);
+  const double quarters = (phi1 - whole) * 4.0;
+  k.dirs.phi1 = static_cast<int>(whole);
+  k.dirs.phi1_quarter = quarters == std::floor(quarters) ? static_cast<int>(quarters) : -1;
   k.dirs.phi2 = static_cast<int>(s.Int(3));
   const int64_t r = s.Int(4);
   k.realization = (r < 0 || r > UINT32_MAX) ? UINT32_MAX : static_cast<uint32_t>(r);

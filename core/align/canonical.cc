@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "core/util/angles.h"
@@ -72,22 +73,37 @@ int ServedDegree(double deg) {
   return Mod180(static_cast<int>(r));
 }
 
-// Algorithm 1.
-AlignOps SingleDirectionOps(int t, int* phi) {
-  if (t <= 45) {
+// Nearest grid step (`steps` per degree) of a finite angle, reduced to
+// [0, 180 steps).
+int ServedSteps(double deg, int steps) {
+  const int full = 180 * steps;
+  const int r = static_cast<int>(std::round(ReduceDirection(deg) * steps));
+  return ((r % full) + full) % full;
+}
+
+// Algorithm 1, in grid steps (`steps` per degree): t in [0, 180 steps).
+AlignOps SingleDirectionOps(int t, int steps, int* phi) {
+  if (t <= 45 * steps) {
     *phi = t;
     return {};
   }
-  if (t <= 90) {
-    *phi = 90 - t;
+  if (t <= 90 * steps) {
+    *phi = 90 * steps - t;
     return {true, false, false};
   }
-  if (t <= 135) {
-    *phi = t - 90;
+  if (t <= 135 * steps) {
+    *phi = t - 90 * steps;
     return {true, true, false};
   }
-  *phi = 180 - t;
+  *phi = 180 * steps - t;
   return {false, true, false};
+}
+
+AlignOps SingleDirectionOps(int t, int* phi) { return SingleDirectionOps(t, 1, phi); }
+
+// The one-direction key at `quarters` quarter degrees.
+CanonicalDirections QuarterKey(int quarters) {
+  return {1, quarters / 4, quarters / 4, quarters % 4};
 }
 
 constexpr uint64_t kGridBits = 53;
@@ -106,7 +122,16 @@ uint64_t Negate(uint64_t q) { return (~q + 1) & kGridMask; }
 
 }  // namespace
 
+double Phi1Degrees(const CanonicalDirections& key) { return key.phi1 + 0.25 * key.phi1_quarter; }
+double Phi2Degrees(const CanonicalDirections& key) {
+  return key.count == 1 ? Phi1Degrees(key) : static_cast<double>(key.phi2);
+}
+
 StatusOr<Canonicalization> Canonicalize(const std::vector<double>& directions_deg) {
+  return Canonicalize(directions_deg, AngleGrid::kWholeDegree);
+}
+
+StatusOr<Canonicalization> Canonicalize(const std::vector<double>& directions_deg, AngleGrid grid) {
   if (directions_deg.size() != 1 && directions_deg.size() != 2) {
     return Status::InvalidArgument("expected one or two directions, got " +
                                    std::to_string(directions_deg.size()));
@@ -119,7 +144,20 @@ StatusOr<Canonicalization> Canonicalize(const std::vector<double>& directions_de
   }
   Canonicalization out;
   out.requested_deg = directions_deg;
+  if (directions_deg.size() == 1 && grid == AngleGrid::kQuarterDegree) {
+    out.grid = grid;
+    const int t = ServedSteps(directions_deg[0], 4);
+    out.served_exact_deg = {0.25 * t};
+    // The nearest whole degree for the integer field (ties away from zero,
+    // 179.5 -> 0).
+    out.served_deg = {ServedDegree(0.25 * t)};
+    int phi = 0;
+    out.ops = SingleDirectionOps(t, 4, &phi);
+    out.key = QuarterKey(phi);
+    return out;
+  }
   for (double d : directions_deg) out.served_deg.push_back(ServedDegree(d));
+  for (int d : out.served_deg) out.served_exact_deg.push_back(d);
 
   if (out.served_deg.size() == 1) {
     int phi = 0;
@@ -147,6 +185,11 @@ size_t CanonicalKeyCount(int count) {
   return 0;
 }
 
+size_t CanonicalKeyCount(int count, AngleGrid grid) {
+  if (grid == AngleGrid::kWholeDegree) return CanonicalKeyCount(count);
+  return count == 1 ? 4 * 45 + 1 : 0;
+}
+
 CanonicalDirections CanonicalKeyAt(int count, size_t index) {
   if (index >= CanonicalKeyCount(count)) return {};
   if (count == 1) {
@@ -156,7 +199,29 @@ CanonicalDirections CanonicalKeyAt(int count, size_t index) {
   return PairKeys()[index];
 }
 
+CanonicalDirections CanonicalKeyAt(int count, size_t index, AngleGrid grid) {
+  if (grid == AngleGrid::kWholeDegree) return CanonicalKeyAt(count, index);
+  if (index >= CanonicalKeyCount(count, grid)) return {};
+  return QuarterKey(static_cast<int>(index));
+}
+
+StatusOr<size_t> CanonicalKeyIndex(const CanonicalDirections& key, AngleGrid grid) {
+  if (grid == AngleGrid::kWholeDegree) return CanonicalKeyIndex(key);
+  if (key.count != 1) {
+    return Status::InvalidArgument("the quarter-degree grid has one-direction keys only, not " +
+                                   ToString(key));
+  }
+  if (key.phi1 < 0 || key.phi1 > 45 || key.phi2 != key.phi1 || key.phi1_quarter < 0 ||
+      key.phi1_quarter > 3 || (key.phi1 == 45 && key.phi1_quarter != 0)) {
+    return Status::InvalidArgument("not a canonical quarter-degree key: " + ToString(key));
+  }
+  return static_cast<size_t>(4 * key.phi1 + key.phi1_quarter);
+}
+
 StatusOr<size_t> CanonicalKeyIndex(const CanonicalDirections& key) {
+  if (key.phi1_quarter != 0) {
+    return Status::InvalidArgument("not a whole-degree key: " + ToString(key));
+  }
   if (key.count == 1) {
     if (key.phi1 < 0 || key.phi1 >= kSingleKeys || key.phi2 != key.phi1) {
       return Status::InvalidArgument("not a canonical one-direction key: " + ToString(key));
@@ -217,8 +282,14 @@ double MapDirection(double deg, AlignOps ops) {
   return ReduceDirection(t);
 }
 
+std::string FormatGridAngle(double deg) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.6g", deg);
+  return buf;
+}
+
 std::string ToString(const CanonicalDirections& key) {
-  if (key.count == 1) return "phi=" + std::to_string(key.phi1);
+  if (key.count == 1) return "phi=" + FormatGridAngle(Phi1Degrees(key));
   return "phi=" + std::to_string(key.phi1) + "," + std::to_string(key.phi2);
 }
 

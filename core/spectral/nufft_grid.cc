@@ -7,15 +7,10 @@
 #include <cstring>
 #include <mutex>
 
+#include "core/spectral/fftw_planner_lock.h"
+
 namespace alignset {
 namespace {
-
-// FFTW's planner keeps global state; every plan is made and destroyed under
-// this lock so that engines in different threads can be set up at once.
-std::mutex& FftwPlannerLock() {
-  static std::mutex mu;
-  return mu;
-}
 
 // Slabs per grid at most: enough to balance any thread count in use here.
 constexpr int kMaxSlabs = 256;

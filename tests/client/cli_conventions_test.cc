@@ -25,7 +25,8 @@ std::string TempPath(const std::string& name) { return test_support::CliTempPath
 
 // Every command and subcommand the binary has.
 std::vector<std::string> AllCommands() {
-  std::vector<std::string> c = {"", "optimize", "evaluate", "sample", "align", "variance"};
+  std::vector<std::string> c = {"", "optimize", "evaluate", "sample", "align", "variance",
+                                "direction"};
 #ifdef ALIGNSET_HAVE_STORAGE
   for (const char* s : {"cache", "cache export", "cache import", "cache merge", "cache verify",
                         "cache list"}) {

@@ -17,6 +17,7 @@ import grpc
 import numpy as np
 
 import alignset
+from alignset.v1 import alignset_pb2 as pb
 
 
 def read(path):
@@ -99,6 +100,34 @@ class ServerTest(unittest.TestCase):
         self.assertEqual(a.shape, (64, 2))
         np.testing.assert_array_equal(a, self.client.samples("owen-sobol", 64, seed=3))
         self.assertFalse(np.array_equal(a, self.client.samples("owen-sobol", 64, seed=3, shear=25)))
+
+    def test_estimate_direction_then_get(self):
+        # A step edge with normal 30 deg on a (H, W) = (48, 64) grid, rows along y.
+        h, w = 48, 64
+        y, x = np.mgrid[0:h, 0:w]
+        x, y = (x + 0.5) / w - 0.5, (y + 0.5) / h - 0.5
+        t = np.radians(30.0)
+        grid = (x * np.cos(t) + y * np.sin(t) >= 0.05).astype(float)
+        d = self.client.estimate_direction(grid)
+        self.assertEqual(d.first.status, pb.DIRECTION_FOUND)
+        self.assertLess(abs(d.first.theta_deg - 30.0), 1.0)
+        # The transposed array is the mirror image: 90 - theta.
+        self.assertLess(abs(self.client.estimate_direction(grid.T).first.theta_deg - 60.0), 1.0)
+        s = self.client.get_set(64, d.first.theta_deg)
+        self.assertEqual(s.points.shape, (64, 2))
+        # Scattered samples of the same edge.
+        rng = np.random.default_rng(3)
+        p = rng.random((4096, 2))
+        f = ((p[:, 0] - 0.5) * np.cos(t) + (p[:, 1] - 0.5) * np.sin(t) >= 0).astype(float)
+        d = self.client.estimate_direction(f, points=p)
+        self.assertLess(abs(d.first.theta_deg - 30.0), 3.0)
+        # A constant patch has none; a NaN is refused.
+        self.assertEqual(self.client.estimate_direction(np.ones((16, 16))).first.status,
+                         pb.NO_DOMINANT_DIRECTION)
+        grid[3, 4] = np.nan
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.estimate_direction(grid)
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
 
     def test_errors_carry_the_status_code(self):
         with self.assertRaises(alignset.AlignSetError) as e:

@@ -56,7 +56,10 @@ struct CallOptions {
 // Everything the server says about a served set (see alignset.proto).
 struct SetInfo {
   std::vector<double> requested_deg;
-  std::vector<int> served_deg;
+  std::vector<int> served_deg;          // nearest whole degrees
+  std::vector<double> served_exact_deg; // exactly (30.25 on the quarter-degree grid)
+  double phi1_exact = 0.0;              // the key's first angle exactly
+  int steps_per_degree = 1;             // the key space key_index counts in (1 or 4)
   uint32_t n = 0;
   int direction_count = 1;
   int phi1 = 0;
@@ -98,6 +101,10 @@ struct SetRequest {
   uint32_t n = 0;
   std::vector<double> directions_deg;
   uint32_t realization = 0;
+  // The grid one direction is served on: 0 the server's default
+  // (--angle-step, quarter degrees unless set), 1 whole degrees (the 46
+  // keys), 4 quarter degrees (181 keys). Two directions: whole degrees.
+  uint32_t steps_per_degree = 0;
 };
 
 // One answer of a batch: the set, or why this item has none. Items fail on
@@ -125,10 +132,14 @@ struct WatchUpdate {
 
 struct PrecomputeSpec {
   std::vector<uint32_t> n;
-  int space = 1;  // 1: the 46 one-direction keys, 2: the 4141 pairs, 0: `keys`
+  int space = 1;  // 1: the one-direction keys, 2: the 4141 pairs, 0: `keys`
   std::vector<std::vector<int>> keys;
   uint32_t shard_index = 0;
   uint32_t shard_count = 1;
+  // Space 1's grid: 1 (or 0), the 46 whole-degree keys; 4, the 181
+  // quarter-degree keys in their own order (also the grid of explicit
+  // one-direction keys).
+  uint32_t steps_per_degree = 1;
   // Realizations 0 .. realizations-1 of every key (at most
   // SetRequest::kMaxRealization + 1).
   uint32_t realizations = 1;
@@ -144,7 +155,7 @@ struct PrecomputeUpdate {
 
 struct ServiceMetrics {
   uint64_t requests_get = 0, requests_watch = 0, requests_precompute = 0, requests_samples = 0,
-           requests_invalid = 0;
+           requests_invalid = 0, requests_estimate = 0;
   uint64_t cache_hits_memory = 0, cache_hits_db = 0, cache_misses = 0, corrupt_rows = 0;
   uint64_t optimizations_started = 0, optimizations_completed = 0, optimizations_cancelled = 0,
            optimizations_failed = 0, shared_waits = 0, rejected_queue_full = 0;
@@ -157,6 +168,23 @@ struct CacheInfo {
   std::string database_path;
   std::string profile_hint;
   ServiceMetrics metrics;
+};
+
+// One direction estimated by EstimateDirection.
+struct EstimatedDirection {
+  bool found = false;      // false: no dominant direction (see reason)
+  double theta_deg = 0.0;  // [0, 180), spectral convention (edge normal); 0 unless found
+  double kappa = 0.0;      // fitted von Mises concentration (doubled angles)
+  double confidence = 0.0; // share of the spectral energy in the fitted lobe
+  double contrast = 0.0;   // lobe energy over an isotropic spectrum's
+  std::string reason;
+};
+
+struct DirectionReply {
+  EstimatedDirection first;
+  bool has_second = false;
+  EstimatedDirection second;
+  double max_radius = 0.0;
 };
 
 struct CachedKey {
@@ -212,6 +240,16 @@ class ServiceClient {
   StatusOr<ServiceMetrics> GetMetrics(const CallOptions& call = {});
   StatusOr<std::vector<CachedKey>> ListCachedSets(uint32_t n, const std::string& profile,
                                                   uint32_t limit, const CallOptions& call = {});
+  // The principal direction(s) of an integrand: a grid of values (width x
+  // height, values[j * width + i] = f((i + 1/2) / width, (j + 1/2) / height),
+  // rows along y) or scattered samples f(points[j]) = values[j]; `second`
+  // also asks for a second direction. Then GetAlignedSet(n, {theta}).
+  StatusOr<DirectionReply> EstimateDirection(int width, int height,
+                                             const std::vector<double>& values, bool second,
+                                             const CallOptions& call = {});
+  StatusOr<DirectionReply> EstimateDirection(const PointSet& points,
+                                             const std::vector<double>& values, bool second,
+                                             const CallOptions& call = {});
   // The standard health service: true when the server reports SERVING.
   StatusOr<bool> Healthy(const CallOptions& call = {});
 

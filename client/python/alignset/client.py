@@ -142,6 +142,29 @@ class Client:
                 out.append(_aligned(item.set))
         return out
 
+    def estimate_direction(self, values, points=None, second=False, timeout=None):
+        """The principal direction(s) of an integrand (EstimateDirection):
+        `values` an (H, W) grid with values[j, i] = f((i + 1/2) / W,
+        (j + 1/2) / H) (rows along y), or, with `points` an (m, 2) array in
+        [0, 1]^2, the m sample values f(points[j]). Returns the
+        alignset.v1.EstimateDirectionResponse: first.status is DIRECTION_FOUND
+        or NO_DOMINANT_DIRECTION (then first.reason says why), first.theta_deg
+        the edge normal to ask get() for."""
+        values = np.asarray(values, dtype=np.float64)
+        request = pb.EstimateDirectionRequest(second=bool(second))
+        if points is None:
+            if values.ndim != 2:
+                raise AlignSetError(grpc.StatusCode.INVALID_ARGUMENT,
+                                    "a grid of values has shape (H, W), not %s" % (values.shape,))
+            request.grid.height, request.grid.width = values.shape
+            request.grid.values.extend(values.ravel().tolist())
+        else:
+            points = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+            request.samples.x.extend(points[:, 0].tolist())
+            request.samples.y.extend(points[:, 1].tolist())
+            request.samples.f.extend(values.ravel().tolist())
+        return self._call(self._stub.EstimateDirection, request, timeout)
+
     def samples(self, sampler, n, seed=1, shear=None, timeout=None):
         """A baseline sampler's set (alignset sample --list names them),
         optionally sheared to a direction (degrees)."""

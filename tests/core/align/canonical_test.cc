@@ -297,5 +297,113 @@ TEST(AlignIntegration, OptimizedSetIsDarkAlongEveryRequestedDirection) {
   }
 }
 
+TEST(AlignIntegration, QuarterDegreeSetIsDarkAlongEveryRequestedDirection) {
+  // Algorithm 1 on the quarter-degree grid: phi = 10.25 serves 10.25, 79.75,
+  // 100.25 and 169.75.
+  OptimizationProblem problem;
+  problem.n = 256;
+  problem.directions = {10.25};
+  problem.seed = 5;
+  OptimizerOptions options;
+  options.max_iterations = 300;
+  DirectEngine engine(2);
+  auto result = Optimize(problem, options, engine);
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  const FrequencyParams params = result->frequency_params;
+  const std::vector<double> requests = {10.25, 79.75, 100.25, 169.75};
+  for (double t : requests) {
+    auto c = Canonicalize({t}, AngleGrid::kQuarterDegree);
+    ASSERT_TRUE(c.ok());
+    ASSERT_EQ(c->key, (CanonicalDirections{1, 10, 10, 1}));
+    ASSERT_EQ(c->served_exact_deg, std::vector<double>{t});
+    const PointSet aligned = Align(result->points, c->ops);
+    ExpectInUnitSquare(aligned);
+    const double dark = MeanPeriodogram(aligned, params, t, &engine);
+    for (double other : requests) {
+      if (other == t) continue;
+      const double bright = MeanPeriodogram(aligned, params, other, &engine);
+      EXPECT_LT(dark, 0.1 * bright) << "request " << t << " vs " << other;
+    }
+  }
+}
+
+TEST(QuarterGrid, CountsOrderAndWholeDegreeSubset) {
+  EXPECT_EQ(CanonicalKeyCount(1, AngleGrid::kQuarterDegree), 181u);
+  EXPECT_EQ(CanonicalKeyCount(2, AngleGrid::kQuarterDegree), 0u);
+  EXPECT_EQ(CanonicalKeyCount(1, AngleGrid::kWholeDegree), 46u);
+  EXPECT_EQ(CanonicalKeyCount(2, AngleGrid::kWholeDegree), 4141u);
+  double prev = -1;
+  for (size_t i = 0; i < 181; ++i) {
+    const CanonicalDirections key = CanonicalKeyAt(1, i, AngleGrid::kQuarterDegree);
+    EXPECT_EQ(Phi1Degrees(key), 0.25 * i);
+    EXPECT_GT(Phi1Degrees(key), prev);
+    prev = Phi1Degrees(key);
+    auto index = CanonicalKeyIndex(key, AngleGrid::kQuarterDegree);
+    ASSERT_TRUE(index.ok());
+    EXPECT_EQ(*index, i);
+    // Whole degrees are the old keys, unchanged, at index 4k.
+    if (i % 4 == 0) {
+      EXPECT_EQ(key, CanonicalKeyAt(1, i / 4));
+      EXPECT_EQ(*CanonicalKeyIndex(key), i / 4);
+    } else {
+      EXPECT_FALSE(CanonicalKeyIndex(key).ok()) << "a quarter is not a whole-degree key";
+    }
+  }
+  EXPECT_EQ(ToString(CanonicalKeyAt(1, 121, AngleGrid::kQuarterDegree)), "phi=30.25");
+  EXPECT_EQ(ToString(CanonicalKeyAt(1, 120, AngleGrid::kQuarterDegree)), "phi=30");
+  EXPECT_FALSE(CanonicalKeyIndex({1, 45, 45, 1}, AngleGrid::kQuarterDegree).ok());
+  EXPECT_FALSE(CanonicalKeyIndex({1, 10, 10, 4}, AngleGrid::kQuarterDegree).ok());
+  EXPECT_FALSE(CanonicalKeyIndex({2, 10, 20, 0}, AngleGrid::kQuarterDegree).ok());
+}
+
+TEST(QuarterGrid, EveryQuarterDirectionMapsBack) {
+  std::set<int> keys;
+  for (int q = 0; q < 720; ++q) {
+    const double t = 0.25 * q;
+    auto c = Canonicalize({t}, AngleGrid::kQuarterDegree);
+    ASSERT_TRUE(c.ok());
+    EXPECT_EQ(c->grid, AngleGrid::kQuarterDegree);
+    ASSERT_TRUE(CanonicalKeyIndex(c->key, AngleGrid::kQuarterDegree).ok()) << t;
+    EXPECT_EQ(c->served_exact_deg, std::vector<double>{t});
+    EXPECT_EQ(MapDirection(Phi1Degrees(c->key), c->ops), t) << t;
+    keys.insert(static_cast<int>(*CanonicalKeyIndex(c->key, AngleGrid::kQuarterDegree)));
+    // On whole degrees both grids agree.
+    if (q % 4 == 0) {
+      auto whole = Canonicalize({t});
+      EXPECT_EQ(whole->key, c->key);
+      EXPECT_EQ(whole->ops, c->ops);
+    }
+  }
+  EXPECT_EQ(keys.size(), 181u);
+}
+
+TEST(QuarterGrid, AlgorithmOneTableAndRounding) {
+  auto at = [](double t) { return *Canonicalize({t}, AngleGrid::kQuarterDegree); };
+  EXPECT_EQ(at(30.25).key, (CanonicalDirections{1, 30, 30, 1}));
+  EXPECT_EQ(at(30.25).ops, (AlignOps{}));
+  EXPECT_EQ(at(59.75).key, (CanonicalDirections{1, 30, 30, 1}));
+  EXPECT_EQ(at(59.75).ops, (AlignOps{true, false, false}));
+  EXPECT_EQ(at(120.25).ops, (AlignOps{true, true, false}));
+  EXPECT_EQ(at(149.75).ops, (AlignOps{false, true, false}));
+  EXPECT_EQ(at(45.0).key, (CanonicalDirections{1, 45, 45, 0}));
+  EXPECT_EQ(at(45.25).key, (CanonicalDirections{1, 44, 44, 3}));  // (45, 90]: swap
+  EXPECT_TRUE(at(45.25).ops.swap);
+  EXPECT_EQ(at(90.25).key, (CanonicalDirections{1, 0, 0, 1}));
+  EXPECT_EQ(at(135.25).key, (CanonicalDirections{1, 44, 44, 3}));
+  // Nearest quarter, ties away from zero, reduced mod 180.
+  EXPECT_EQ(at(30.1).served_exact_deg[0], 30.0);
+  EXPECT_EQ(at(30.13).served_exact_deg[0], 30.25);
+  EXPECT_EQ(at(30.125).served_exact_deg[0], 30.25);
+  EXPECT_EQ(at(179.9).served_exact_deg[0], 0.0);
+  EXPECT_EQ(at(-0.3).served_exact_deg[0], 179.75);
+  EXPECT_EQ(at(400.6).served_exact_deg[0], 40.5);
+  EXPECT_EQ(at(30.5).served_deg[0], 31);  // the integer field: nearest whole degree
+  // Two directions stay on whole degrees.
+  auto two = *Canonicalize({10.3, 100.6}, AngleGrid::kQuarterDegree);
+  EXPECT_EQ(two.grid, AngleGrid::kWholeDegree);
+  EXPECT_EQ(two.served_exact_deg, (std::vector<double>{10, 101}));
+  EXPECT_EQ(two.key.phi1_quarter, 0);
+}
+
 }  // namespace
 }  // namespace alignset
