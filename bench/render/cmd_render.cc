@@ -30,7 +30,8 @@ std::string SamplerHelp() {
   for (const std::string& n : SamplerNames()) s += " " + n;
   s += "\n  pmj02bn-sheared, pmj02bn-sheared-exact  pmj02bn sheared to the pixel's estimated / exact θ\n"
        "  screen-space-rank1   rank-1 lattice, per-pixel shifts optimized as blue noise (seeds/003)\n"
-       "  aligned              aligned sets from the server for the pixel's estimated θ\n"
+       "  aligned              aligned sets from the server for the pixel's θ estimated by\n"
+       "                       core/analysis's EstimateDirection on a --prepass of the pixel\n"
        "  aligned-exact        aligned sets for θ from the scene's geometry (the bound)\n"
        "  line, segment        line / segment samples (seeds/004), --orientation\n";
   return s;
@@ -111,6 +112,10 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("--segment-length", o->request.segment_length, "segment length in pixel widths")
       ->capture_default_str()
       ->check(FiniteIn(1e-6, 1.0));
+  c->add_option("--prepass", o->request.prepass,
+                 "pre-pass of the direction estimator (aligned, pmj02bn-sheared, line, segment): "
+                 "gridG, jgridG or samplesM, optionally cP (a confidence floor of P percent)")
+      ->capture_default_str();
   c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
   AddServiceOptions(c, &o->service);
   c->footer([] { return SamplerHelp(); });

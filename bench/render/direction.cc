@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <numeric>
 
 #include "bench/render/parallel.h"
 #include "core/util/angles.h"
@@ -64,56 +62,6 @@ PixelDirection GeometryDirection(const PixelIntegrand& f) {
     break;
   }
   return d;
-}
-
-namespace {
-
-class PlaceholderEstimator : public DirectionEstimator {
- public:
-  explicit PlaceholderEstimator(int grid) : g_(grid) {}
-  std::string name() const override { return "placeholder-grid" + std::to_string(g_); }
-  int evaluations() const override { return g_ * g_; }
-  PixelDirection Estimate(const PixelIntegrand& f, uint64_t) const override {
-    std::vector<double> v(g_ * g_);
-    for (int j = 0; j < g_; ++j) {
-      for (int i = 0; i < g_; ++i) v[j * g_ + i] = f.Eval({(i + 0.5) / g_, (j + 0.5) / g_});
-    }
-    double sc = 0.0, ss = 0.0, total = 0.0;
-    for (int b = -g_ / 2; b < (g_ + 1) / 2; ++b) {
-      for (int a = 0; a < (g_ + 1) / 2; ++a) {
-        if (a == 0 || b == 0) continue;  // the axes: the pixel's own boundary
-        std::complex<double> sum = 0.0;
-        for (int j = 0; j < g_; ++j) {
-          for (int i = 0; i < g_; ++i) {
-            sum += v[j * g_ + i] * std::polar(1.0, -2.0 * kPi * (a * i + b * j) / g_);
-          }
-        }
-        const double p = std::norm(sum);
-        const double phi = std::atan2(static_cast<double>(b), static_cast<double>(a));
-        sc += p * std::cos(2 * phi);
-        ss += p * std::sin(2 * phi);
-        total += p;
-      }
-    }
-    PixelDirection d;
-    const double mean = std::abs(std::accumulate(v.begin(), v.end(), 0.0)) + 1e-12;
-    if (total < 1e-6 * mean * mean) return d;
-    const double coherence = std::hypot(sc, ss) / total;
-    d.confidence = coherence;
-    if (coherence < 0.3) return d;
-    d.kind = PixelDirection::Kind::kOne;
-    d.theta1 = ReduceDirection(0.5 * std::atan2(ss, sc) * 180.0 / kPi);
-    return d;
-  }
-
- private:
-  int g_;
-};
-
-}  // namespace
-
-std::unique_ptr<DirectionEstimator> MakePlaceholderEstimator(int grid) {
-  return std::make_unique<PlaceholderEstimator>(grid);
 }
 
 std::vector<PixelDirection> GeometryDirections(const Scene& scene) {

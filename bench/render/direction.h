@@ -42,14 +42,12 @@ class DirectionEstimator {
   // Integrand evaluations the pre-pass spends per pixel.
   virtual int evaluations() const = 0;
   virtual PixelDirection Estimate(const PixelIntegrand& f, uint64_t pixel_seed) const = 0;
+  // Pre-passes the estimator refused (counted, never silent: such a pixel is
+  // treated as direction-less).
+  virtual int64_t refusals() const { return 0; }
 };
 
-// DEVELOPMENT STAND-IN, not the estimator of record: a G x G grid pre-pass,
-// its DFT power spectrum without the axis rows and columns (the periodized
-// pixel's own boundary lives there), and the doubled-angle mean of the
-// remaining energy. The `aligned` sampler of record uses core/analysis's
-// estimator (issue 12) once it is on main.
-std::unique_ptr<DirectionEstimator> MakePlaceholderEstimator(int grid);
+// The estimator of record is core/analysis's (bench/render/spectral_estimator.h).
 
 std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
                                                uint64_t seed, int threads);

@@ -5,12 +5,21 @@
 //
 //   render_bench --server ADDR --out DIR [--size 128] [--n 16,32,...,4096]
 //                [--image-n 256,1024,4096] [--scenes antialias,shadow]
-//                [--samplers a,b,...] [--threads 2] [--seed 1] [--prepass 8]
+//                [--samplers a,b,...] [--threads 2] [--seed 1] [--prepass grid16c50]
+//                [--alt-prepass samples256]
+//                [--compare-prepass grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024]
 //                [--line-rates 1|0] [--two-max-n 65536]
 //
-// Two-direction sets are used up to --two-max-n (default: every N). Each N
-// needs ~250 distinct two-direction keys for these scenes (about 10 minutes
-// at N = 4096 on two cores, once: the server caches them); above the limit a
+// --prepass is the estimator of record behind `aligned` (core/analysis's
+// EstimateDirection on that pre-pass, bench/render/spectral_estimator.h);
+// --alt-prepass renders `aligned` with other pre-passes too (variants
+// aligned-<prepass>); --compare-prepass adds pre-passes to directions.txt
+// only (accuracy and cost against the geometry, no renders).
+//
+// Two-direction sets are used up to --two-max-n (default: every N; run.sh
+// passes 2048). Each N needs about 390 distinct two-direction keys for these
+// scenes, the geometry's pairs and the estimator's (about 20 minutes at
+// N = 2048 on two cores, once: the server caches them); above the limit a
 // pixel with two edges gets the stronger edge's one-direction set.
 //
 // Writes DIR/render_errors.csv (one row per scene, sampler and N: MSE over
@@ -37,6 +46,7 @@
 #include "bench/render/renderer.h"
 #include "bench/render/scene.h"
 #include "bench/render/set_fetch.h"
+#include "bench/render/spectral_estimator.h"
 #include "client/progress.h"
 #include <alignset/client.h>
 #include "core/sampling/screen_space_rank1.h"
@@ -67,6 +77,7 @@ struct Variant {
   AlignedPolicy policy;
   LineOrientation orientation = LineOrientation::kNormal;
   bool per_pixel_shift = true;
+  std::string prepass;  // aligned: the estimator's pre-pass (empty: the one of record)
 };
 
 std::vector<Variant> AllVariants() {
@@ -136,27 +147,42 @@ struct SceneData {
   std::vector<double> reference;
   std::vector<PixelClass> classes;
   std::vector<PixelDirection> exact, estimated;
+  std::map<std::string, std::vector<PixelDirection>> by_prepass;  // every pre-pass estimated
   Subsets subsets;
   double estimate_seconds = 0.0;
 };
 
-void DirectionReport(std::ofstream& out, const SceneData& d, const DirectionEstimator& e) {
-  std::vector<double> errors;
+// The estimator against the geometry on one scene: angle errors where both
+// see one direction, and the kinds each sees.
+void DirectionReport(std::ofstream& out, const SceneData& d, const std::vector<PixelDirection>& est,
+                     const DirectionEstimator& e, double seconds, int64_t refusals, bool of_record) {
+  std::vector<double> errors, errors_two;
   int confusion[3][3] = {};
   for (size_t i = 0; i < d.classes.size(); ++i) {
     if (d.classes[i] == PixelClass::kConstant) continue;
-    confusion[int(d.exact[i].kind)][int(d.estimated[i].kind)]++;
-    if (d.exact[i].kind == PixelDirection::Kind::kOne && d.estimated[i].kind != PixelDirection::Kind::kNone) {
-      errors.push_back(AxialDistanceDeg(d.exact[i].theta1, d.estimated[i].theta1));
+    confusion[int(d.exact[i].kind)][int(est[i].kind)]++;
+    if (d.exact[i].kind == PixelDirection::Kind::kOne && est[i].kind != PixelDirection::Kind::kNone) {
+      errors.push_back(AxialDistanceDeg(d.exact[i].theta1, est[i].theta1));
+    }
+    if (d.exact[i].kind == PixelDirection::Kind::kTwo && est[i].kind != PixelDirection::Kind::kNone) {
+      // The estimate's first direction against the nearer of the two.
+      errors_two.push_back(std::min(AxialDistanceDeg(d.exact[i].theta1, est[i].theta1),
+                                    AxialDistanceDeg(d.exact[i].theta2, est[i].theta1)));
     }
   }
   std::sort(errors.begin(), errors.end());
-  auto q = [&](double p) { return errors.empty() ? NAN : errors[size_t(p * (errors.size() - 1))]; };
-  out << "scene " << d.scene.name() << ": estimator " << e.name() << ", " << e.evaluations()
-      << " integrand evaluations per pixel, " << d.estimate_seconds << " s for "
-      << d.scene.size() << " pixels\n";
-  out << "  angle error on one-direction edge pixels (deg): median " << q(0.5) << ", p90 " << q(0.9)
-      << ", p99 " << q(0.99) << " (" << errors.size() << " pixels)\n";
+  std::sort(errors_two.begin(), errors_two.end());
+  auto q = [](const std::vector<double>& v, double p) {
+    return v.empty() ? NAN : v[size_t(p * (v.size() - 1))];
+  };
+  out << "scene " << d.scene.name() << ": estimator " << e.name() << (of_record ? " [aligned]" : "")
+      << ", " << e.evaluations() << " integrand evaluations per pixel, " << seconds << " s for "
+      << d.scene.size() << " pixels, " << refusals << " pre-passes refused\n";
+  out << "  angle error on one-direction edge pixels (deg): median " << q(errors, 0.5) << ", p90 "
+      << q(errors, 0.9) << ", p99 " << q(errors, 0.99) << " (" << errors.size() << " pixels)\n";
+  out << "  first direction against the nearer edge on two-direction edge pixels (deg): median "
+      << q(errors_two, 0.5) << ", p90 " << q(errors_two, 0.9) << " (" << errors_two.size()
+      << " pixels)\n";
   out << "  kinds, rows = geometry (none, one, two), columns = estimator (none, one, two), non-constant pixels:\n";
   for (int r = 0; r < 3; ++r) {
     out << "   ";
@@ -217,7 +243,9 @@ int Main(int argc, char** argv) {
       {"server", ""}, {"out", "bench/results/render"}, {"size", "128"},
       {"n", "16,32,64,128,256,512,1024,2048,4096"}, {"image-n", "256,1024,4096"},
       {"scenes", "antialias,shadow"}, {"samplers", ""}, {"threads", "2"}, {"seed", "1"},
-      {"prepass", "8"}, {"line-rates", "1"}, {"two-max-n", "65536"}};
+      {"prepass", kDefaultPrepass}, {"alt-prepass", "samples256"},
+      {"compare-prepass", "grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024"},
+      {"line-rates", "1"}, {"two-max-n", "65536"}};
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0 || i + 1 >= argc || !a.count(k.substr(2))) {
@@ -256,10 +284,31 @@ int Main(int argc, char** argv) {
 
   if (a["line-rates"] == "1") LineRates(out + "/line_rates.csv", ns);
 
-  const std::unique_ptr<DirectionEstimator> estimator =
-      MakePlaceholderEstimator(std::atoi(a["prepass"].c_str()));
+  std::vector<Prepass> prepasses;
+  for (const std::string& spec :
+       Split(a["prepass"] + "," + a["alt-prepass"] + "," + a["compare-prepass"])) {
+    auto p = ParsePrepass(spec);
+    if (!p.ok()) {
+      std::fprintf(stderr, "render_bench: %s\n", p.status().message().c_str());
+      return 2;
+    }
+    bool seen = false;
+    for (const Prepass& q : prepasses) seen |= q.Name() == p->Name();
+    if (!seen) prepasses.push_back(*p);
+  }
+  for (const std::string& spec : Split(a["alt-prepass"])) {
+    const std::string name = ParsePrepass(spec)->Name();
+    if (name == prepasses.front().Name()) continue;
+    Variant alt{"aligned-" + name, "aligned"};
+    alt.prepass = name;
+    if (wanted.empty() || std::find(wanted.begin(), wanted.end(), alt.label) != wanted.end()) {
+      variants.push_back(alt);
+    }
+  }
   std::vector<SceneData> scenes;
   std::ofstream dir_out(out + "/directions.txt");
+  std::ofstream est_csv(out + "/estimator.csv");  // the estimator of record's cost, per scene
+  est_csv << "scene,prepass,evaluations,seconds,pixels,threads\n";
   for (const std::string& name : Split(a["scenes"])) {
     auto t0 = std::chrono::steady_clock::now();
     auto scene = MakeScene(name, size, size, seed);
@@ -272,9 +321,40 @@ int Main(int argc, char** argv) {
     d.reference = d.scene.Reference();
     d.classes = d.scene.Classes();
     d.exact = GeometryDirections(d.scene);
-    auto te = std::chrono::steady_clock::now();
-    d.estimated = EstimateDirections(d.scene, *estimator, seed, threads);
-    d.estimate_seconds = Seconds(te);
+    // One estimate per pre-pass without its confidence floor (the costly
+    // part, timed), then each floor applied to it.
+    struct Raw {
+      std::vector<PixelDirection> directions;
+      double seconds = 0.0;
+      int64_t refusals = 0;
+    };
+    std::map<std::string, Raw> raw;
+    for (size_t k = 0; k < prepasses.size(); ++k) {
+      Prepass unfloored = prepasses[k];
+      unfloored.min_confidence_pct = 0;
+      const std::unique_ptr<DirectionEstimator> estimator = MakeSpectralEstimator(unfloored);
+      auto it = raw.find(unfloored.Name());
+      if (it == raw.end()) {
+        auto te = std::chrono::steady_clock::now();
+        std::vector<PixelDirection> est = EstimateDirections(d.scene, *estimator, seed, threads);
+        it = raw.emplace(unfloored.Name(), Raw{std::move(est), Seconds(te), estimator->refusals()}).first;
+        std::fprintf(stderr, "scene %s: directions by %s in %.1f s\n", name.c_str(),
+                     estimator->name().c_str(), it->second.seconds);
+      }
+      std::vector<PixelDirection> est = it->second.directions;
+      for (PixelDirection& p : est) p = ApplyConfidenceFloor(p, prepasses[k].min_confidence_pct);
+      const double secs = it->second.seconds;
+      const auto named = MakeSpectralEstimator(prepasses[k]);
+      DirectionReport(dir_out, d, est, *named, secs, it->second.refusals, k == 0);
+      dir_out.flush();
+      if (k > 0) d.by_prepass[prepasses[k].Name()] = est;
+      if (k == 0) {
+        est_csv << name << "," << prepasses[k].Name() << "," << named->evaluations() << ","
+                << secs << "," << d.scene.size() << "," << threads << "\n";
+        d.estimated = std::move(est);
+        d.estimate_seconds = secs;
+      }
+    }
     d.subsets = MakeSubsets(d.scene, d.exact, d.estimated);
     const std::vector<size_t> shape = {size_t(size), size_t(size)};
     std::vector<double> cls, t_exact, t_est, k_exact, k_est;
@@ -291,12 +371,12 @@ int Main(int argc, char** argv) {
     WriteNpy(out + "/images/" + name + "_theta_estimated.npy", shape, t_est);
     WriteNpy(out + "/images/" + name + "_kind_exact.npy", shape, k_exact);
     WriteNpy(out + "/images/" + name + "_kind_estimated.npy", shape, k_est);
-    DirectionReport(dir_out, d, *estimator);
     std::fprintf(stderr, "scene %s: %zu edge, %zu smooth pixels; built and estimated in %.1f s\n",
                  name.c_str(), d.subsets.pixels[0].size(), d.subsets.pixels[1].size(), Seconds(t0));
     scenes.push_back(std::move(d));
   }
   dir_out.close();
+  est_csv.close();
 
   const std::vector<double> sigmas = {1.0, 2.0, 4.0};
   std::ofstream csv(out + "/render_errors.csv");
@@ -324,7 +404,9 @@ int Main(int argc, char** argv) {
     for (const SceneData& d : scenes) {
       for (const Variant& v : now) {
         if (v.sampler != "aligned" && v.sampler != "aligned-exact") continue;
-        const auto& dirs = v.sampler == "aligned" ? d.estimated : d.exact;
+        const auto& dirs = v.sampler == "aligned-exact" ? d.exact
+                           : v.prepass.empty()          ? d.estimated
+                                                        : d.by_prepass.at(v.prepass);
         for (const auto& p : NeededPairs(dirs, v.policy)) pairs.insert(p);
       }
     }
@@ -370,7 +452,7 @@ int Main(int argc, char** argv) {
         SamplerConfig c;
         c.name = v.sampler;
         c.n = n;
-        c.estimated = &d.estimated;
+        c.estimated = v.prepass.empty() ? &d.estimated : &d.by_prepass.at(v.prepass);
         c.exact = &d.exact;
         c.sets = &table;
         c.policy = v.policy;
@@ -399,7 +481,12 @@ int Main(int argc, char** argv) {
         for (double b : e.blur_rms) csv << "," << b;
         csv << "," << secs << "\n";
         csv.flush();
-        if (std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {
+        // The image-N grids, and every N >= 256 of the samplers the
+        // acceptance table compares (plot_render.py bootstraps its ratios
+        // over their edge pixels).
+        const bool compared = n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
+                                           v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
+        if (compared || std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {
           WriteNpy(out + "/images/" + d.scene.name() + "_" + v.label + "_n" + std::to_string(n) + ".npy",
                    {size_t(d.scene.height()), size_t(d.scene.width())}, img);
         }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bench/render/pixel_samplers.h"
+#include "bench/render/spectral_estimator.h"
 #include <alignset/client.h>
 #include "core/util/status.h"
 
@@ -23,6 +24,7 @@ struct RenderRequest {
   LineOrientation orientation = LineOrientation::kNormal;  // line, segment
   double segment_length = 0.5;
   int threads = 2;
+  std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
   ConnectOptions server;       // aligned, aligned-exact only
 };
 

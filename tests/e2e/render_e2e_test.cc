@@ -11,6 +11,8 @@
 #include "bench/render/renderer.h"
 #include "bench/render/scene.h"
 #include "bench/render/set_fetch.h"
+#include "bench/render/spectral_estimator.h"
+#include "core/util/hash.h"
 #include <alignset/client.h>
 #include "tests/e2e/server_process.h"
 
@@ -34,8 +36,6 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
   for (const char* name : {"antialias", "shadow"}) {
     const Scene scene = *MakeScene(name, 128, 128, 1);
     const std::vector<PixelDirection> exact = GeometryDirections(scene);
-    const std::vector<PixelDirection> estimated =
-        EstimateDirections(scene, *MakePlaceholderEstimator(8), 1, 2);
     // A few edge pixels of each kind and a smooth one, spread over the image.
     const std::vector<PixelClass> classes = scene.Classes();
     std::vector<size_t> pixels;
@@ -48,6 +48,10 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
       if (classes[i] == PixelClass::kSmooth && smooth < 1) pixels.push_back(i), ++smooth;
     }
     ASSERT_EQ(pixels.size(), 6u) << name;
+    // The estimator of record on these pixels, seeded as EstimateDirections does.
+    const auto estimator = MakeSpectralEstimator(*ParsePrepass(kDefaultPrepass));
+    std::vector<PixelDirection> estimated(scene.size());
+    for (size_t i : pixels) estimated[i] = estimator->Estimate(scene.Pixel(i), HashCombine(1, i));
     // Only the pairs these pixels need: the test stays seconds long.
     AlignedPolicy policy;
     std::vector<PixelDirection> mine_exact(exact.size()), mine_est(estimated.size());
@@ -146,6 +150,46 @@ TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
   for (size_t i = 0; i < ref.size(); ++i) mse += ((*pixels)[i] - ref[i]) * ((*pixels)[i] - ref[i]) / ref.size();
   EXPECT_LT(mse, 1e-3);  // 16 samples of a [0, 1] integrand: far below 1/16
   EXPECT_GT(mse, 0.0);
+}
+
+// The renderer estimates in process (core/analysis); a renderer without the
+// core library would send the same pre-pass to the server's EstimateDirection.
+// Both must say the same of the same pixels.
+TEST(RenderE2e, TheEstimateOverTheWireIsTheInProcessOne) {
+  TempDir dir;
+  ServerProcess server(dir.path(), {"--workers", "1", "--threads-per-worker", "1"});
+  ASSERT_EQ(server.error(), "");
+  ConnectOptions o;
+  o.address = server.address();
+  auto client = ServiceClient::Connect(o);
+  ASSERT_TRUE(client.ok()) << client.status().message();
+  const Scene scene = *MakeScene("shadow", 128, 128, 1);
+  const std::vector<PixelClass> classes = scene.Classes();
+  const auto estimator = MakeSpectralEstimator(*ParsePrepass("grid16"));
+  int edges = 0, found = 0;
+  for (size_t k = 0; k < classes.size() && edges < 12; ++k) {
+    const size_t i = (k * 7919 + 101) % classes.size();
+    if (classes[i] != PixelClass::kEdge) continue;
+    ++edges;
+    // grid16: f at the cell centres, row j along y, as GridPatch lays it out.
+    std::vector<double> values;
+    for (int j = 0; j < 16; ++j) {
+      for (int c = 0; c < 16; ++c) values.push_back(scene.Pixel(i).Eval({(c + 0.5) / 16, (j + 0.5) / 16}));
+    }
+    auto wire = (*client)->EstimateDirection(16, 16, values, /*second=*/true);
+    ASSERT_TRUE(wire.ok()) << wire.status().message();
+    const PixelDirection local = estimator->Estimate(scene.Pixel(i), HashCombine(1, i));
+    ASSERT_EQ(wire->first.found, local.kind != PixelDirection::Kind::kNone) << "pixel " << i;
+    if (!wire->first.found) continue;
+    ++found;
+    EXPECT_NEAR(wire->first.theta_deg, local.theta1, 1e-9) << "pixel " << i;
+    EXPECT_NEAR(wire->first.confidence, local.confidence, 1e-12) << "pixel " << i;
+    const bool two = wire->has_second && wire->second.found;
+    ASSERT_EQ(two, local.kind == PixelDirection::Kind::kTwo) << "pixel " << i;
+    if (two) EXPECT_NEAR(wire->second.theta_deg, local.theta2, 1e-9) << "pixel " << i;
+  }
+  EXPECT_EQ(edges, 12);
+  EXPECT_GE(found, 8);  // most edge pixels have a direction: the comparison is not vacuous
 }
 
 TEST(RenderE2e, AServerThatIsGoneIsAClearError) {
