@@ -42,6 +42,9 @@ struct GetOptions {
   int64_t realization = 0;
   // -m M: realizations r .. r + M - 1 in one batch call, as a multi-set file.
   std::optional<int64_t> sets;
+  // --space 1dir: the whole one-direction space of N (the 46 canonical sets,
+  // phi = 0..45) in one batch call, as (46, N, 2) .npy or 46 text sets.
+  std::string space;
   ServiceOptions service;
 };
 
@@ -157,9 +160,44 @@ StatusOr<std::vector<double>> DirectionsFromPatch(ServiceClient& client, const G
   return dirs;
 }
 
+// The one-direction space: what a table-driven renderer loads once and
+// aligns itself (method.md, Algorithm 1).
+int RunGetSpace(const GetOptions& o) {
+  if (!o.dirs.empty() || !o.from_patch.empty() || o.sets || !o.angle_step.empty()) {
+    return Usage(Status::InvalidArgument(
+        "--space 1dir takes no --dir, --from-patch, -m or --angle-step (it is the 46 canonical sets)"));
+  }
+  auto client = Connect(o.service);
+  if (!client.ok()) return Usage(client.status());
+  if (!o.quiet) {
+    std::fprintf(stderr, "alignset get: the one-direction space of N = %lld (46 sets) in one call\n",
+                 static_cast<long long>(o.n));
+  }
+  auto batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
+                                               static_cast<uint32_t>(o.realization));
+  if (!batch.ok()) return Failure(batch.status());
+  std::vector<PointSet> points;
+  std::string comment = "alignset one-direction space: set k is the canonical set for phi = k deg "
+                        "(k = 0..45); other directions by Algorithm 1 (swap / invert)";
+  for (size_t k = 0; k < batch->size(); ++k) {
+    BatchItem& item = (*batch)[k];
+    if (!item.status.ok()) return Failure(Status::Unavailable("phi = " + std::to_string(k) + ": " + item.status.message()));
+    comment += "\n" + Comment(item.set.info);
+    points.push_back(std::move(item.set.points));
+  }
+  if (Status written = WritePointSets(o.out, points, comment); !written.ok()) return Failure(written);
+  FILE* report = ReportStreamFor(o.out);
+  std::fprintf(report, "wrote %s: %zu sets of %lld points (phi = 0..45 deg), realization %lld\n",
+               o.out.c_str(), points.size(), static_cast<long long>(o.n),
+               static_cast<long long>(o.realization));
+  return kExitOk;
+}
+
 int RunGet(GetOptions o) {
+  if (!o.space.empty()) return RunGetSpace(o);
   if (o.dirs.empty() == o.from_patch.empty()) {
-    return Usage(Status::InvalidArgument("give --dir (degrees, edge normal) or --from-patch FILE"));
+    return Usage(Status::InvalidArgument(
+        "give --dir (degrees, edge normal) or --from-patch FILE, or --space 1dir"));
   }
   if (o.two && o.from_patch.empty()) {
     return Usage(Status::InvalidArgument("--two goes with --from-patch (with --dir, give it twice)"));
@@ -253,6 +291,10 @@ void AddGetCommand(CLI::App& app) {
   c->add_option("-m,--sets", o->sets,
                 "several realizations, R .. R+M-1, in one call: '#'-separated text, (m, N, 2) .npy")
       ->check(IntegerIn(1, SetRequest::kMaxRealization + 1));
+  c->add_option("--space", o->space,
+                 "instead of --dir: the whole one-direction space, the 46 canonical sets\n"
+                 "phi = 0..45 ((46, N, 2) .npy; a table for a renderer that aligns itself)")
+      ->check(CLI::IsMember({"1dir"}));
   c->add_option("--angle-step", o->angle_step,
                 "grid one direction is served on: 0.25 or 1 degree (default: the server's)")
       ->check(CLI::IsMember({"1", "0.25"}));

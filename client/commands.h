@@ -28,5 +28,10 @@ void AddGetCommand(CLI::App& app);
 void AddPrecomputeCommand(CLI::App& app);
 void AddStatsCommand(CLI::App& app);
 #endif
+#ifdef ALIGNSET_HAVE_RENDER
+// `alignset render`: defined in bench/render/cmd_render.cc, linked in by
+// bench/render/CMakeLists.txt when the renderer is built.
+void AddRenderCommand(CLI::App& app);
+#endif
 
 }  // namespace alignset::cli

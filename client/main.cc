@@ -43,5 +43,8 @@ int main(int argc, char** argv) {
   AddPrecomputeCommand(app);
   AddStatsCommand(app);
 #endif
+#ifdef ALIGNSET_HAVE_RENDER
+  AddRenderCommand(app);
+#endif
   return RunApp(app, argc, argv);
 }

@@ -2,6 +2,7 @@
 // client library:  alignset_consumer HOST:PORT
 // Exit status 0 when every check holds; otherwise one line on stderr.
 #include <alignset/client.h>
+#include <alignset/pixel_shift.h>
 
 #include <cstdio>
 #include <string>
@@ -48,6 +49,15 @@ int main(int argc, char** argv) {
   }
   if ((*batch)[0].set.raw != set->raw || !(*batch)[1].set.info.swapped) {
     return Fail("GetAlignedSets: wrong sets");
+  }
+  // The per-pixel recipe from the installed header: shifted sets stay in
+  // the unit square, and two pixels get different shifts.
+  alignset::PointSet shifted;
+  for (const alignset::Point2& p : set->points) {
+    shifted.push_back(alignset::ShiftPoint(p, alignset::PixelShift(7, 3, 4)));
+  }
+  if (!InUnitSquare(shifted) || alignset::PixelShift(7, 3, 4) == alignset::PixelShift(7, 4, 3)) {
+    return Fail("PixelShift / ShiftPoint misbehave");
   }
   std::printf("alignset %s client: %zu points for %d deg (key %s), batch of %zu\n",
               alignset::kClientVersion, set->points.size(), set->info.served_deg[0],

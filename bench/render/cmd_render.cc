@@ -1,0 +1,125 @@
+// `alignset render`: one image of one scene with one sampler, as a .npy
+// array, so that anyone can compare a sampler with any tool. Compiled into
+// the `alignset` binary by bench/render/CMakeLists.txt (the renderer lives in
+// bench/render; client/main.cc only calls AddRenderCommand).
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "bench/render/render_command.h"
+#include "client/commands.h"
+#include "client/progress.h"
+#include "client/service_options.h"
+#include "core/sampling/samplers.h"
+
+namespace alignset::cli {
+namespace {
+
+struct RenderOptions {
+  render::RenderRequest request;
+  std::string orientation = "normal";
+  int64_t spp = 0;
+  int64_t size = 128;
+  int64_t seed = 1;
+  ServiceOptions service;
+};
+
+std::string SamplerHelp() {
+  std::string s = "samplers:\n  the kinds of `alignset sample --list`:";
+  for (const std::string& n : SamplerNames()) s += " " + n;
+  s += "\n  pmj02bn-sheared, pmj02bn-sheared-exact  pmj02bn sheared to the pixel's estimated / exact θ\n"
+       "  screen-space-rank1   rank-1 lattice, per-pixel shifts optimized as blue noise (seeds/003)\n"
+       "  aligned              aligned sets from the server for the pixel's θ estimated by\n"
+       "                       core/analysis's EstimateDirection on a --prepass of the pixel\n"
+       "  aligned-exact        aligned sets for θ from the scene's geometry (the bound)\n"
+       "  line, segment        line / segment samples (seeds/004), --orientation\n";
+  return s;
+}
+
+int Run(RenderOptions& o) {
+  const bool sampler_given = !o.request.sampler.empty();
+  if (!o.request.reference && (!sampler_given || o.spp < 1)) {
+    return ReportError("render", Status::InvalidArgument("give --sampler NAME and --spp N, or --reference"),
+                       kExitUsage);
+  }
+  if (o.request.reference && sampler_given) {
+    return ReportError("render", Status::InvalidArgument("--reference writes the exact image; it takes no --sampler"),
+                       kExitUsage);
+  }
+  if (o.orientation == "normal") {
+    o.request.orientation = render::LineOrientation::kNormal;
+  } else if (o.orientation == "edge") {
+    o.request.orientation = render::LineOrientation::kEdge;
+  } else {
+    o.request.orientation = render::LineOrientation::kRandom;
+  }
+  o.request.spp = static_cast<uint32_t>(o.spp);
+  o.request.size = static_cast<int>(o.size);
+  o.request.seed = static_cast<uint64_t>(o.seed);
+  if (o.request.sampler == "aligned" || o.request.sampler == "aligned-exact") {
+    auto connect = ResolveConnectOptions(o.service);
+    if (!connect.ok()) return ReportError("render", connect.status(), kExitUsage);
+    o.request.server = *connect;
+  }
+  std::map<std::string, std::unique_ptr<Progress>> bars;
+  auto summary = render::RunRender(o.request, [&](const std::string& stage, double done, double total,
+                                                  const std::string& detail) {
+    auto& bar = bars[stage];
+    if (!bar) bar = std::make_unique<Progress>(stage);
+    bar->Update(done, total, detail);
+  });
+  for (auto& [stage, bar] : bars) bar->Finish("");
+  if (!summary.ok()) {
+    const bool usage = summary.status().code() == Status::Code::kInvalidArgument;
+    return ReportError("render", summary.status(), usage ? kExitUsage : kExitFailure);
+  }
+  if (o.request.reference) {
+    std::printf("wrote %s: %s, %lldx%lld, the exact image\n", o.request.out.c_str(),
+                o.request.scene.c_str(), static_cast<long long>(o.size), static_cast<long long>(o.size));
+    return kExitOk;
+  }
+  std::printf("wrote %s: %s, %lldx%lld, %s, N = %u\n", o.request.out.c_str(), o.request.scene.c_str(),
+              static_cast<long long>(o.size), static_cast<long long>(o.size), o.request.sampler.c_str(),
+              o.request.spp);
+  std::printf("MSE against the exact image: edge pixels %.4g, smooth pixels %.4g, all %.4g\n",
+              summary->mse_edge, summary->mse_smooth, summary->mse_all);
+  if (!summary->note.empty()) std::printf("%s\n", summary->note.c_str());
+  std::printf("%.2f s\n", summary->seconds);
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddRenderCommand(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* c = AddCommand(app, "render",
+                           "render a test scene with one sampler into a .npy image (row y = pixel row y)");
+  c->add_option("--scene", o->request.scene, "antialias | shadow")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"antialias", "shadow"}));
+  c->add_option("--sampler", o->request.sampler, "sampler name (listed below)");
+  c->add_option("-n,--spp", o->spp, "samples per pixel")->check(IntegerIn(1, 65536));
+  c->add_option("-o,--out", o->request.out, "output .npy (float64, shape (H, W))")->required();
+  c->add_flag("--reference", o->request.reference, "write the exact image instead");
+  c->add_option("--size", o->size, "image width and height in pixels")
+      ->capture_default_str()
+      ->check(IntegerIn(1, 4096));
+  c->add_option("-s,--seed", o->seed, "scene and sampler seed")->capture_default_str()->check(IntegerIn(0, INT64_MAX));
+  c->add_option("--orientation", o->orientation, "line / segment direction: normal | edge | random")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"normal", "edge", "random"}));
+  c->add_option("--segment-length", o->request.segment_length, "segment length in pixel widths")
+      ->capture_default_str()
+      ->check(FiniteIn(1e-6, 1.0));
+  c->add_option("--prepass", o->request.prepass,
+                 "pre-pass of the direction estimator (aligned, pmj02bn-sheared, line, segment): "
+                 "gridG, jgridG or samplesM, optionally cP (a confidence floor of P percent)")
+      ->capture_default_str();
+  c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
+  AddServiceOptions(c, &o->service);
+  c->footer([] { return SamplerHelp(); });
+  c->callback([o] { Finish(Run(*o)); });
+}
+
+}  // namespace alignset::cli

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/render/pixel_integrand.h"
+#include "bench/render/scene.h"
+
+namespace alignset::render {
+
+// What a pixel's integrand says about the set to ask for. θ in degrees, in
+// the spectral convention (the normal of the edge), in [0, 180).
+struct PixelDirection {
+  enum class Kind : int { kNone = 0, kOne = 1, kTwo = 2 };
+  Kind kind = Kind::kNone;  // kNone: no dominant direction (smooth, or no clear edge)
+  double theta1 = 0.0;
+  double theta2 = 0.0;      // only for kTwo
+  double kappa = 0.0;       // the estimator's concentration (0 for the geometry)
+  double confidence = 0.0;  // share of the edge weight (geometry) or energy (estimator) in theta1
+};
+
+// The bound: the direction from the scene's geometry. The pixel's
+// discontinuities (PixelIntegrand::Discontinuities) are grouped by normal
+// (pieces within kSameDirectionDeg are one direction), each group weighted by
+// sum of length x jump; θ1 is the heaviest. A second group at least
+// kSecondDirectionMinDeg away from θ1 and at least kSecondDirectionShare of
+// θ1's weight makes the pixel kTwo.
+inline constexpr double kSameDirectionDeg = 0.5;
+inline constexpr double kSecondDirectionMinDeg = 2.0;
+inline constexpr double kSecondDirectionShare = 0.25;
+PixelDirection GeometryDirection(const PixelIntegrand& f);
+std::vector<PixelDirection> GeometryDirections(const Scene& scene);
+
+// The estimator slot: turns a low-spp pre-pass of a pixel's integrand into a
+// direction, as a renderer that does not know its geometry must.
+class DirectionEstimator {
+ public:
+  virtual ~DirectionEstimator() = default;
+  virtual std::string name() const = 0;
+  // Integrand evaluations the pre-pass spends per pixel.
+  virtual int evaluations() const = 0;
+  virtual PixelDirection Estimate(const PixelIntegrand& f, uint64_t pixel_seed) const = 0;
+  // Pre-passes the estimator refused (counted, never silent: such a pixel is
+  // treated as direction-less).
+  virtual int64_t refusals() const { return 0; }
+};
+
+// The estimator of record is core/analysis's (bench/render/spectral_estimator.h).
+
+std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
+                                               uint64_t seed, int threads);
+
+// Axial distance between two directions in degrees, in [0, 90].
+double AxialDistanceDeg(double a, double b);
+
+}  // namespace alignset::render

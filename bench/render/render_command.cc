@@ -1,0 +1,102 @@
+#include "bench/render/render_command.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "bench/render/direction.h"
+#include "bench/render/npy.h"
+#include "bench/render/renderer.h"
+#include "bench/render/scene.h"
+#include "bench/render/set_fetch.h"
+#include "core/sampling/samplers.h"
+#include "core/sampling/screen_space_rank1.h"
+
+namespace alignset::render {
+
+StatusOr<RenderSummary> RunRender(
+    const RenderRequest& r,
+    const std::function<void(const std::string&, double, double, const std::string&)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (r.out.size() < 5 || r.out.compare(r.out.size() - 4, 4, ".npy") != 0) {
+    return Status::InvalidArgument("--out must name a .npy file, got '" + r.out + "'");
+  }
+  auto scene = MakeScene(r.scene, r.size, r.size, r.seed);
+  if (!scene.ok()) return scene.status();
+  const std::vector<size_t> shape = {size_t(scene->height()), size_t(scene->width())};
+  RenderSummary summary;
+  if (r.reference) {
+    if (Status s = WriteNpy(r.out, shape, scene->Reference()); !s.ok()) return s;
+    summary.note = "exact reference";
+    return summary;
+  }
+  const std::vector<std::string> extra = RenderSamplerNames();
+  const std::vector<std::string> known = SamplerNames();
+  if (std::find(extra.begin(), extra.end(), r.sampler) == extra.end() &&
+      std::find(known.begin(), known.end(), r.sampler) == known.end()) {
+    std::string all;
+    for (const auto& n : known) all += n + ", ";
+    for (const auto& n : extra) all += n + ", ";
+    all.resize(all.size() - 2);
+    return Status::InvalidArgument("unknown sampler '" + r.sampler + "' (known: " + all + ")");
+  }
+  if (r.spp < 1 || r.spp > 65536) {
+    return Status::InvalidArgument("--spp must be in [1, 65536], got " + std::to_string(r.spp));
+  }
+  const std::vector<PixelDirection> exact = GeometryDirections(*scene);
+  auto prepass = ParsePrepass(r.prepass);
+  if (!prepass.ok()) return prepass.status();
+  const std::unique_ptr<DirectionEstimator> estimator = MakeSpectralEstimator(*prepass);
+  // The pre-pass only for the samplers that read the estimated θ (it costs
+  // about 3 ms per pixel with grid16).
+  const bool uses_estimate =
+      r.sampler == "aligned" || r.sampler == "pmj02bn-sheared" ||
+      ((r.sampler == "line" || r.sampler == "segment") && r.orientation != LineOrientation::kRandom);
+  const std::vector<PixelDirection> estimated =
+      uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
+                    : std::vector<PixelDirection>(scene->size());
+  SamplerConfig c;
+  c.name = r.sampler;
+  c.n = r.spp;
+  c.exact = &exact;
+  c.estimated = &estimated;
+  c.orientation = r.orientation;
+  c.segment_length = r.segment_length;
+  AlignedSetTable table;
+  ShiftTile tile;
+  if (r.sampler == "aligned" || r.sampler == "aligned-exact") {
+    auto client = ServiceClient::Connect(r.server);
+    if (!client.ok()) return client.status();
+    const auto pairs = NeededPairs(r.sampler == "aligned" ? estimated : exact, c.policy);
+    auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress);
+    if (!fetched.ok()) return fetched.status();
+    table = std::move(*fetched);
+    c.sets = &table;
+    summary.note = "180 one-direction and " + std::to_string(pairs.size()) +
+                   " two-direction sets from " + r.server.address;
+  }
+  if (r.sampler == "screen-space-rank1") {
+    auto t = OptimizeShiftTile(r.spp, ShiftTileOptions{});
+    if (!t.ok()) return t.status();
+    tile = std::move(*t);
+    c.tile = &tile;
+    summary.note = "64x64 shift tile optimized for N = " + std::to_string(r.spp);
+  }
+  if (uses_estimate) {
+    summary.note += (summary.note.empty() ? "" : "; ") + std::string("directions: ") +
+                    estimator->name() + " (" + std::to_string(estimator->evaluations()) +
+                    " evaluations per pixel)";
+  }
+  auto sampler = MakePixelSampler(c);
+  if (!sampler.ok()) return sampler.status();
+  const std::vector<double> image = Render(*scene, **sampler, r.seed, r.threads);
+  if (Status s = WriteNpy(r.out, shape, image); !s.ok()) return s;
+  const ImageErrors e =
+      MeasureErrors(image, scene->Reference(), scene->Classes(), scene->width(), scene->height(), {});
+  summary.mse_edge = e.mse_edge;
+  summary.mse_smooth = e.mse_smooth;
+  summary.mse_all = e.mse_all;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return summary;
+}
+
+}  // namespace alignset::render

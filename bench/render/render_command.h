@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "bench/render/pixel_samplers.h"
+#include "bench/render/spectral_estimator.h"
+#include <alignset/client.h>
+#include "core/util/status.h"
+
+namespace alignset::render {
+
+// One image with one sampler: what `alignset render` does, free of any
+// command-line parser.
+struct RenderRequest {
+  std::string scene = "antialias";  // antialias | shadow
+  std::string sampler;              // `alignset sample --list` names, or RenderSamplerNames()
+  uint32_t spp = 0;
+  bool reference = false;           // write the exact image instead (no sampler, no server)
+  std::string out;                  // .npy, float64 (H, W), row y = pixel row y
+  int size = 128;
+  uint64_t seed = 1;
+  LineOrientation orientation = LineOrientation::kNormal;  // line, segment
+  double segment_length = 0.5;
+  int threads = 2;
+  std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
+  ConnectOptions server;       // aligned, aligned-exact only
+};
+
+// What came out: the MSE against the exact image over edge and smooth pixels.
+struct RenderSummary {
+  double mse_edge = 0.0, mse_smooth = 0.0, mse_all = 0.0;
+  double seconds = 0.0;
+  std::string note;  // one line on what was used (estimator, sets fetched, tile)
+};
+
+// INVALID_ARGUMENT for a bad scene, sampler, N or output path; the server's
+// Status (UNAVAILABLE, ...) when the aligned sets cannot be fetched.
+StatusOr<RenderSummary> RunRender(
+    const RenderRequest& request,
+    const std::function<void(const std::string&, double, double, const std::string&)>& progress);
+
+}  // namespace alignset::render

@@ -1,0 +1,70 @@
+#include "bench/render/set_fetch.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace alignset::render {
+
+StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
+                                           const std::set<std::pair<int, int>>& pairs,
+                                           const FetchProgressFn& progress) {
+  auto report = [&](const std::string& stage, double done, double total, const std::string& d) {
+    if (progress) progress(stage, done, total, d);
+  };
+  auto precompute = [&](const PrecomputeSpec& spec, const std::string& stage) -> Status {
+    auto r = client.Precompute(spec, [&](const PrecomputeUpdate& u) {
+      report(stage, static_cast<double>(u.done + u.cached_already + u.failed),
+             static_cast<double>(u.total),
+             u.last_key.empty() ? std::string() : "last " + u.last_key);
+    });
+    if (!r.ok()) return r.status();
+    if (r->failed > 0) {
+      return Status::Internal(stage + ": " + std::to_string(r->failed) +
+                              " keys failed on the server: " + r->last_error);
+    }
+    return Status::Ok();
+  };
+  PrecomputeSpec one;
+  one.n = {n};
+  one.space = 1;
+  if (Status s = precompute(one, "optimize 1-dir space N=" + std::to_string(n)); !s.ok()) return s;
+  if (!pairs.empty()) {
+    PrecomputeSpec two;
+    two.n = {n};
+    two.space = 0;
+    for (const auto& [a, b] : pairs) two.keys.push_back({a, b});
+    if (Status s = precompute(two, "optimize 2-dir keys N=" + std::to_string(n)); !s.ok()) return s;
+  }
+
+  AlignedSetTable table;
+  table.n = n;
+  table.one.resize(180);
+  std::vector<SetRequest> items;
+  for (int deg = 0; deg < 180; ++deg) items.push_back({n, {static_cast<double>(deg)}});
+  for (const auto& [a, b] : pairs) items.push_back({n, {static_cast<double>(a), static_cast<double>(b)}});
+  const std::string stage = "fetch sets N=" + std::to_string(n);
+  for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
+    const size_t end = std::min(items.size(), begin + kMaxBatchItems);
+    auto batch = client.GetAlignedSets({items.begin() + begin, items.begin() + end});
+    if (!batch.ok()) return batch.status();
+    if (batch->size() != end - begin) return Status::Internal("batch answered " + std::to_string(batch->size()) + " items of " + std::to_string(end - begin));
+    for (size_t i = begin; i < end; ++i) {
+      BatchItem& item = (*batch)[i - begin];
+      if (!item.status.ok()) return item.status;
+      if (i < 180) {
+        const int deg = static_cast<int>(i);
+        if (item.set.info.served_deg.size() != 1 || item.set.info.served_deg[0] != deg) {
+          return Status::Internal("server served a different direction for " + std::to_string(deg) + " deg");
+        }
+        table.one[deg] = std::move(item.set.points);
+      } else {
+        const int a = static_cast<int>(items[i].directions_deg[0]), b = static_cast<int>(items[i].directions_deg[1]);
+        table.two[{a, b}] = std::move(item.set.points);
+      }
+    }
+    report(stage, static_cast<double>(end), static_cast<double>(items.size()), "");
+  }
+  return table;
+}
+
+}  // namespace alignset::render

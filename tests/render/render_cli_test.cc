@@ -1,0 +1,91 @@
+// `alignset render` as a user runs it: the real binary, its files and exit
+// statuses. (The aligned samplers against a real server: tests/e2e.)
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "bench/render/npy.h"
+#include "bench/render/pixel_samplers.h"
+#include "bench/render/renderer.h"
+#include "bench/render/scene.h"
+
+namespace alignset::render {
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result RunCli(const std::string& args) {
+  Result r;
+  FILE* p = popen((std::string(ALIGNSET_CLI_PATH) + " " + args + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  size_t got;
+  while ((got = fread(buf, 1, sizeof(buf), p)) > 0) r.output.append(buf, got);
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class RenderCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char tmpl[] = "/tmp/alignset-render-cli-XXXXXX";
+    ASSERT_NE(mkdtemp(tmpl), nullptr);
+    dir_ = tmpl;
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::string dir_;
+};
+
+TEST_F(RenderCli, ReferenceIsTheExactImage) {
+  const Result r = RunCli("render --scene shadow --size 24 --reference -o " + dir_ + "/ref.npy");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::vector<size_t> shape;
+  auto img = ReadNpy(dir_ + "/ref.npy", &shape);
+  ASSERT_TRUE(img.ok()) << img.status().message();
+  EXPECT_EQ(shape, (std::vector<size_t>{24, 24}));
+  EXPECT_EQ(*img, MakeShadowScene(24, 24, 1).Reference());
+}
+
+TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
+  const Result r = RunCli("render --scene antialias --size 32 --sampler owen-sobol -n 16 -s 3 -o " + dir_ + "/os.npy");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("MSE against the exact image"), std::string::npos) << r.output;
+  std::vector<size_t> shape;
+  auto img = ReadNpy(dir_ + "/os.npy", &shape);
+  ASSERT_TRUE(img.ok());
+  const Scene scene = MakeAntialiasScene(32, 32, 3);
+  auto sampler = MakePixelSampler({"owen-sobol", 16});
+  ASSERT_TRUE(sampler.ok());
+  EXPECT_EQ(*img, Render(scene, **sampler, 3, 1));
+  // Line samples across the estimated edge, and the screen-space sampler.
+  EXPECT_EQ(RunCli("render --size 16 --sampler line --orientation random -n 8 -o " + dir_ + "/l.npy").status, 0);
+  EXPECT_EQ(RunCli("render --size 16 --sampler screen-space-rank1 -n 8 -o " + dir_ + "/s.npy").status, 0);
+}
+
+TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
+  for (const std::string& args :
+       {std::string("render --sampler no-such -n 16 -o x.npy"), std::string("render --sampler owen-sobol -o x.npy"),
+        std::string("render --reference --sampler owen-sobol -o x.npy"),
+        std::string("render --sampler owen-sobol -n 16 -o x.txt"), std::string("render --scene teapot --reference -o x.npy"),
+        std::string("render --sampler jittered -n 15 -o x.npy")}) {
+    const Result r = RunCli(args + " --size 8");
+    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+  }
+  // A server that is not there is a failure, not a usage error.
+  const Result r = RunCli("render --size 8 --sampler aligned -n 16 --server 127.0.0.1:1 --timeout 5 -o " + dir_ + "/a.npy");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("UNAVAILABLE"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace alignset::render

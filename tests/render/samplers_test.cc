@@ -1,0 +1,183 @@
+// Every sampler of the renderer on a few pixels of both scenes at low N: each
+// estimate, over independent replicates (render seeds), must agree with the
+// exact reference within its own statistical bound. No golden images.
+#include "bench/render/pixel_samplers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench/render/direction.h"
+#include "bench/render/renderer.h"
+#include "bench/render/scene.h"
+#include "bench/render/spectral_estimator.h"
+#include "core/sampling/samplers.h"
+#include "core/util/hash.h"
+
+namespace alignset::render {
+namespace {
+
+struct Fixture {
+  Scene scene;
+  std::vector<PixelDirection> exact, estimated;
+  std::vector<size_t> pixels;  // edge pixels (one- and two-direction) and smooth ones
+};
+
+const Fixture& Get(const std::string& name) {
+  static std::map<std::string, Fixture> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  Fixture f;
+  f.scene = *MakeScene(name, 128, 128, 1);
+  f.exact = GeometryDirections(f.scene);
+  const std::vector<PixelClass> classes = f.scene.Classes();
+  int one = 0, two = 0, smooth = 0;
+  for (size_t k = 0; k < classes.size(); ++k) {
+    const size_t i = (k * 7919 + 101) % classes.size();  // spread over the image
+    if (classes[i] == PixelClass::kEdge && f.exact[i].kind == PixelDirection::Kind::kOne && one < 3) {
+      f.pixels.push_back(i), ++one;
+    } else if (classes[i] == PixelClass::kEdge && f.exact[i].kind == PixelDirection::Kind::kTwo &&
+               two < 2) {
+      f.pixels.push_back(i), ++two;
+    } else if (classes[i] == PixelClass::kSmooth && smooth < 2) {
+      f.pixels.push_back(i), ++smooth;
+    }
+  }
+  // The estimator of record on the chosen pixels only (the whole image
+  // would cost seconds), seeded as EstimateDirections seeds them.
+  const auto estimator = MakeSpectralEstimator(*ParsePrepass(kDefaultPrepass));
+  f.estimated.assign(f.scene.size(), PixelDirection{});
+  for (size_t i : f.pixels) f.estimated[i] = estimator->Estimate(f.scene.Pixel(i), HashCombine(1, i));
+  return cache.emplace(name, std::move(f)).first->second;
+}
+
+struct Stats {
+  double mean = 0.0, sd = 0.0;
+};
+Stats Replicates(const Scene& s, const PixelSampler& sampler, size_t i, int reps) {
+  std::vector<double> e;
+  for (int r = 1; r <= reps; ++r) {
+    e.push_back(RenderPixel(s, sampler, static_cast<int>(i % s.width()),
+                            static_cast<int>(i / s.width()), static_cast<uint64_t>(r)));
+  }
+  Stats st;
+  for (double v : e) st.mean += v / reps;
+  for (double v : e) st.sd += (v - st.mean) * (v - st.mean);
+  st.sd = std::sqrt(st.sd / (reps - 1));
+  return st;
+}
+
+std::vector<SamplerConfig> AllConfigs(const Fixture& f, uint32_t n, const ShiftTile* tile) {
+  std::vector<SamplerConfig> out;
+  for (const std::string& name : SamplerNames()) out.push_back({name, n});
+  for (const char* name : {"pmj02bn-sheared", "pmj02bn-sheared-exact", "screen-space-rank1"}) {
+    out.push_back({name, n});
+  }
+  for (const char* name : {"line", "segment"}) {
+    for (LineOrientation o : {LineOrientation::kNormal, LineOrientation::kEdge, LineOrientation::kRandom}) {
+      SamplerConfig c{name, n};
+      c.orientation = o;
+      out.push_back(c);
+    }
+  }
+  for (SamplerConfig& c : out) {
+    c.estimated = &f.estimated;
+    c.exact = &f.exact;
+    c.tile = tile;
+  }
+  return out;
+}
+
+TEST(RenderSamplers, EveryEstimateAgreesWithTheExactPixelWithinItsBound) {
+  constexpr int kReps = 24;
+  for (uint32_t n : {16u, 64u}) {
+    ShiftTileOptions o;
+    o.size = 16;
+    o.test_integrands = 32;
+    o.sweeps = 8;
+    const ShiftTile tile = *OptimizeShiftTile(n, o);
+    for (const char* scene : {"antialias", "shadow"}) {
+      const Fixture& f = Get(scene);
+      ASSERT_GE(f.pixels.size(), 6u) << scene;
+      for (const SamplerConfig& c : AllConfigs(f, n, &tile)) {
+        auto sampler = MakePixelSampler(c);
+        ASSERT_TRUE(sampler.ok()) << c.name << ": " << sampler.status().message();
+        for (size_t i : f.pixels) {
+          const PixelIntegrand& px = f.scene.Pixel(i);
+          const Stats st = Replicates(f.scene, **sampler, i, kReps);
+          ASSERT_TRUE(std::isfinite(st.mean)) << c.name;
+          // The replicates' spread is the estimator's own error scale: the
+          // mean of 24 must sit within 5 standard errors (Student t, 23
+          // degrees of freedom: a false alarm about once in 30000 checks).
+          EXPECT_NEAR(st.mean, px.Exact(), 5.0 * st.sd / std::sqrt(double(kReps)) + 1e-12)
+              << scene << " " << c.name << " orientation " << int(c.orientation) << " N=" << n
+              << " pixel " << i << " class " << int(px.Classify());
+          if (px.Classify() == PixelClass::kEdge) {
+            // A real randomization: replicates differ where the integrand
+            // has an edge (else the bound above would prove nothing).
+            EXPECT_GT(st.sd, 0.0) << scene << " " << c.name << " pixel " << i;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(RenderSamplers, LineSamplesConvergeAtTheSeedsRates) {
+  // seeds/004: jittered lines across a step pre-filter it to a C0 function of
+  // the offset (variance ~ N^-3); lines along it keep the jump (~ N^-2).
+  // Averaged over 48 straight edges at random angles and offsets (a single
+  // edge's variance along it swings with where the jump falls in its stratum).
+  Pcg32 rng(17);
+  std::vector<std::pair<PixelIntegrand, double>> pixels;
+  for (int k = 0; k < 48; ++k) {
+    const double deg = 180.0 * rng.NextDouble(), rad = deg * M_PI / 180.0;
+    const V2 nn = {std::cos(rad), std::sin(rad)};
+    const V2 c = {0.3 + 0.4 * rng.NextDouble(), 0.3 + 0.4 * rng.NextDouble()};
+    const Polygon half = ClipHalfPlane({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, nn, Dot(nn, c));
+    pixels.push_back({PixelIntegrand(Linear{0.2, 0, 0}, {Fragment{half, Linear{0.9, 0, 0}, {}}}), deg});
+  }
+  auto variance = [&](bool across, uint32_t n) {
+    double v = 0.0;
+    for (const auto& [f, deg] : pixels) {
+      for (int r = 0; r < 48; ++r) {
+        const double e = LineEstimate(f, n, across ? deg : deg + 90.0, 1000 + r) - f.Exact();
+        v += e * e;
+      }
+    }
+    return v / (48.0 * pixels.size());
+  };
+  const double slope_across = std::log(variance(true, 64) / variance(true, 16)) / std::log(4.0);
+  const double slope_along = std::log(variance(false, 64) / variance(false, 16)) / std::log(4.0);
+  EXPECT_LT(slope_across, -2.6);
+  EXPECT_GT(slope_along, -2.4);
+  EXPECT_LT(slope_along, -1.6);
+  EXPECT_LT(variance(true, 64), 0.2 * variance(false, 64));
+}
+
+TEST(RenderSamplers, RefusesWhatItCannotDo) {
+  EXPECT_FALSE(MakePixelSampler({"no-such-sampler", 16}).ok());
+  EXPECT_FALSE(MakePixelSampler({"jittered", 15}).ok());  // square N only
+  EXPECT_FALSE(MakePixelSampler({"aligned", 16}).ok());   // no sets, no directions
+  EXPECT_FALSE(MakePixelSampler({"screen-space-rank1", 16}).ok());
+  SamplerConfig seg{"segment", 16};
+  seg.orientation = LineOrientation::kRandom;
+  seg.segment_length = 0.0;
+  EXPECT_FALSE(MakePixelSampler(seg).ok());
+}
+
+TEST(RenderSamplers, ImageErrorsSplitEdgeAndSmoothPixels) {
+  const std::vector<double> ref = {0, 0, 0, 0};
+  const std::vector<double> img = {1, 2, 3, 4};
+  const std::vector<PixelClass> cls = {PixelClass::kEdge, PixelClass::kSmooth, PixelClass::kEdge,
+                                       PixelClass::kConstant};
+  const ImageErrors e = MeasureErrors(img, ref, cls, 2, 2, {0.0});
+  EXPECT_DOUBLE_EQ(e.mse_edge, (1 + 9) / 2.0);
+  EXPECT_DOUBLE_EQ(e.mse_smooth, 4.0);
+  EXPECT_DOUBLE_EQ(e.mse_all, 30.0 / 4);
+  EXPECT_EQ(e.edge_pixels, 2u);
+  EXPECT_DOUBLE_EQ(e.blur_rms[0], std::sqrt(30.0 / 4));
+}
+
+}  // namespace
+}  // namespace alignset::render
