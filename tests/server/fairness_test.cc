@@ -2,15 +2,13 @@
 // slices, pausing and resuming, the per-client cap, batch yielding to
 // interactive work. Real optimizations on the direct engine, small N.
 #include <gtest/gtest.h>
-#include <stdlib.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <thread>
 
 #include "core/spectral/direct_engine.h"
 #include "server/scheduler.h"
-#include "tests/server/gated_engine.h"
+#include "tests/server/scheduler_fixture.h"
 
 namespace alignset::server {
 namespace {
@@ -18,21 +16,8 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-class FairnessTest : public ::testing::Test {
+class FairnessTest : public testing::SchedulerFixture {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/alignset-fairness-XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-    auto cache = storage::SetCache::Open(dir_ + "/cache.sqlite");
-    ASSERT_TRUE(cache.ok()) << cache.status().message();
-    cache_ = std::move(cache).value();
-  }
-  void TearDown() override {
-    scheduler_.reset();
-    cache_.reset();
-    std::filesystem::remove_all(dir_);
-  }
   void Start(int max_iterations, std::chrono::milliseconds slice, int per_client = 64, int max_paused = 16) {
     Scheduler::Options o;
     o.workers = 1;
@@ -41,34 +26,13 @@ class FairnessTest : public ::testing::Test {
     o.time_slice = slice;
     o.max_paused = max_paused;
     o.optimizer.max_iterations = max_iterations;
-    o.engine_factory = [g = gate_]() -> StatusOr<std::unique_ptr<SpectralEngine>> {
-      return std::unique_ptr<SpectralEngine>(std::make_unique<testing::GatedEngine>(g));
-    };
-    auto s = Scheduler::Create(o, cache_.get(), &metrics_);
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    scheduler_ = std::move(s).value();
+    StartWith(o);
   }
-  storage::SetKey Key(uint32_t n, int phi) { return scheduler_->KeyFor(n, {1, phi, phi}); }
-  std::unique_ptr<Ticket> MustAcquire(const storage::SetKey& key, Priority p, const std::string& client) {
-    auto t = scheduler_->Acquire(key, p, client);
-    EXPECT_TRUE(t.ok()) << t.status().message();
-    return t.ok() ? std::move(t).value() : nullptr;
-  }
-  static void WaitDone(const Ticket& t) {
-    for (int i = 0; i < 1200 && !t.Wait(100ms); ++i) {
-    }
-    ASSERT_TRUE(t.Done());
-  }
+  static void WaitDone(const Ticket& t) { SchedulerFixture::WaitDone(t, 1200); }
   static void WaitRunning(const Ticket& t) {
     for (int i = 0; i < 1000 && t.View().state != JobView::State::kRunning; ++i) std::this_thread::sleep_for(5ms);
     ASSERT_EQ(t.View().state, JobView::State::kRunning);
   }
-
-  std::string dir_;
-  std::unique_ptr<storage::SetCache> cache_;
-  Metrics metrics_;
-  std::shared_ptr<testing::Gate> gate_ = std::make_shared<testing::Gate>();
-  std::unique_ptr<Scheduler> scheduler_;
 };
 
 TEST_F(FairnessTest, AnotherClientsSmallJobDoesNotWaitBehindAGreedyClientsQueue) {
@@ -101,8 +65,8 @@ TEST_F(FairnessTest, APausedAndResumedJobStoresTheSameSetAsAnUninterruptedRun) {
   alone.reset();
   scheduler_.reset();
   cache_.reset();
-  std::filesystem::remove(dir_ + "/cache.sqlite");
-  cache_ = std::move(storage::SetCache::Open(dir_ + "/cache2.sqlite")).value();
+  std::filesystem::remove(dir_.File("cache.sqlite"));
+  cache_ = std::move(storage::SetCache::Open(dir_.File("cache2.sqlite"))).value();
 
   // Now it shares the worker with another client's jobs, every 5 ms.
   Start(/*max_iterations=*/300, /*slice=*/5ms);

@@ -1,66 +1,27 @@
 #include "server/scheduler.h"
 
 #include <gtest/gtest.h>
-#include <stdlib.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <thread>
 
-#include "tests/server/gated_engine.h"
+#include "tests/server/scheduler_fixture.h"
 
 namespace alignset::server {
 namespace {
 
 using namespace std::chrono_literals;
-using testing::Gate;
-using testing::GatedEngine;
 
-class SchedulerTest : public ::testing::Test {
+class SchedulerTest : public testing::SchedulerFixture {
  protected:
-  void SetUp() override {
-    char tmpl[] = "/tmp/alignset-scheduler-XXXXXX";
-    ASSERT_NE(mkdtemp(tmpl), nullptr);
-    dir_ = tmpl;
-    auto cache = storage::SetCache::Open(dir_ + "/cache.sqlite");
-    ASSERT_TRUE(cache.ok()) << cache.status().message();
-    cache_ = std::move(cache).value();
-  }
-  void TearDown() override {
-    scheduler_.reset();
-    cache_.reset();
-    std::filesystem::remove_all(dir_);
-  }
   void Start(int workers, int max_queue, int max_iterations) {
     Scheduler::Options o;
     o.workers = workers;
     o.max_queue = max_queue;
     o.optimizer.max_iterations = max_iterations;
     o.optimizer.progress_every = 1;
-    o.engine_factory = [g = gate_]() -> StatusOr<std::unique_ptr<SpectralEngine>> {
-      return std::unique_ptr<SpectralEngine>(std::make_unique<GatedEngine>(g));
-    };
-    auto s = Scheduler::Create(o, cache_.get(), &metrics_);
-    ASSERT_TRUE(s.ok()) << s.status().message();
-    scheduler_ = std::move(s).value();
+    StartWith(o);
   }
-  storage::SetKey Key(uint32_t n, int phi) { return scheduler_->KeyFor(n, {1, phi, phi}); }
-  std::unique_ptr<Ticket> MustAcquire(const storage::SetKey& key, Priority p) {
-    auto t = scheduler_->Acquire(key, p);
-    EXPECT_TRUE(t.ok()) << t.status().message();
-    return t.ok() ? std::move(t).value() : nullptr;
-  }
-  static void WaitDone(const Ticket& t) {
-    for (int i = 0; i < 600 && !t.Wait(100ms); ++i) {
-    }
-    ASSERT_TRUE(t.Done());
-  }
-
-  std::string dir_;
-  std::unique_ptr<storage::SetCache> cache_;
-  Metrics metrics_;
-  std::shared_ptr<Gate> gate_ = std::make_shared<Gate>();
-  std::unique_ptr<Scheduler> scheduler_;
+  static void WaitDone(const Ticket& t) { SchedulerFixture::WaitDone(t, 600); }
 };
 
 TEST_F(SchedulerTest, ConcurrentRequestsForOneKeyShareOneOptimization) {
