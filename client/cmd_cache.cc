@@ -11,6 +11,7 @@
 
 #include "client/commands.h"
 #include "storage/cache_recovery.h"
+#include "storage/partial_file.h"
 #include "storage/set_cache.h"
 
 namespace alignset::cli {
@@ -26,22 +27,6 @@ struct CacheOptions {
   std::optional<std::string> profile;
   bool force = false;  // overwrite an existing OUT.partial
 };
-
-// OUT.partial (and its -wal/-shm) may be another run's work in progress:
-// removed only when asked to.
-Status ClearPartial(const std::string& tmp, bool force) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (const char* suffix : {"", "-wal", "-shm"}) {
-    if (!fs::exists(tmp + suffix, ec)) continue;
-    if (!force) {
-      return Status::InvalidArgument(tmp + suffix + " exists (an interrupted or running merge or "
-                                     "recover); remove it, or pass --force to overwrite it");
-    }
-    fs::remove(tmp + suffix, ec);
-  }
-  return Status::Ok();
-}
 
 // Local work: a bad argument or a missing file is a usage error (2), any
 // other failure (SQLite, the file system) a failure (1). Damaged sets found
@@ -113,7 +98,7 @@ int RunMerge(const CacheOptions& o) {
   // interrupted merge never leaves a partial FILE behind.
   const std::string tmp = o.out + ".partial";
   std::error_code ec;
-  if (Status s = ClearPartial(tmp, o.force); !s.ok()) return Fail("merge", s);
+  if (Status s = storage::ClearPartialFile(tmp, o.force); !s.ok()) return Fail("merge", s);
   StatusOr<int64_t> corrupt = Status::Internal("not run");
   {
     auto cache = SetCache::Open(tmp);
@@ -121,7 +106,7 @@ int RunMerge(const CacheOptions& o) {
     corrupt = MergeAll(**cache, o.files);
   }  // closing the last connection checkpoints and removes the WAL
   if (!corrupt.ok()) {
-    for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(tmp + suffix, ec);
+    storage::RemovePartialFile(tmp);
     return Fail("merge", corrupt.status());
   }
   fs::rename(tmp, o.out, ec);

@@ -11,6 +11,7 @@
 #include <set>
 #include <tuple>
 
+#include "storage/partial_file.h"
 #include "storage/schema.h"
 #include "storage/set_rows.h"
 #include "storage/sqlite_handle.h"
@@ -221,14 +222,7 @@ StatusOr<RecoverReport> RecoverCache(const std::string& damaged_path, const std:
   if (out_path.empty()) return Status::InvalidArgument("the output path is empty");
   if (fs::exists(out_path, ec)) return Status::InvalidArgument(out_path + " already exists");
   const std::string tmp = out_path + ".partial";
-  for (const char* suffix : {"", "-wal", "-shm"}) {
-    if (!fs::exists(tmp + suffix, ec)) continue;
-    if (!overwrite_partial) {
-      return Status::InvalidArgument(tmp + suffix + " exists (an interrupted or running recover or merge); "
-                                     "remove it, or pass --force to overwrite it");
-    }
-    fs::remove(tmp + suffix, ec);
-  }
+  if (Status s = ClearPartialFile(tmp, overwrite_partial); !s.ok()) return s;
   RecoverReport report;
   Status put_error;
   {
@@ -246,7 +240,7 @@ StatusOr<RecoverReport> RecoverCache(const std::string& damaged_path, const std:
     }
   }  // closing the last connection checkpoints and removes the WAL
   if (!put_error.ok()) {
-    for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(tmp + suffix, ec);
+    RemovePartialFile(tmp);
     return put_error;
   }
   fs::rename(tmp, out_path, ec);
