@@ -66,15 +66,7 @@ int RunOptimize(const OptimizeOptions& o) {
   if (!kind.ok()) return Usage(kind.status());
   const bool supplement = o.profile == "supplement";
   OptimizerOptions options = o.optimizer;
-  if (supplement) {
-    const OptimizerOptions s = SupplementOptimizerOptions();
-    options.weighting = s.weighting;
-    options.warmup_weighting = s.warmup_weighting;
-    options.warmup_fraction = s.warmup_fraction;
-    options.stratify_axes = s.stratify_axes;
-    options.zero_radius = s.zero_radius;
-    options.final_margin = s.final_margin;
-  }
+  if (supplement) TurnOffLowFrequencyLevers(&options);
   if (o.revert_on == "total") {
     options.divergence_signal = DivergenceSignal::kTotalLoss;
   } else if (o.revert_on != "spectrum") {

@@ -100,13 +100,17 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n) {
 
 OptimizerOptions SupplementOptimizerOptions() {
   OptimizerOptions o;
-  o.weighting = {};
-  o.warmup_weighting = {};
-  o.warmup_fraction = 0.0;
-  o.stratify_axes = false;
-  o.zero_radius = 0.0;
-  o.final_margin = 0.0;
+  TurnOffLowFrequencyLevers(&o);
   return o;
+}
+
+void TurnOffLowFrequencyLevers(OptimizerOptions* options) {
+  options->weighting = {};
+  options->warmup_weighting = {};
+  options->warmup_fraction = 0.0;
+  options->stratify_axes = false;
+  options->zero_radius = 0.0;
+  options->final_margin = 0.0;
 }
 
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {

@@ -125,6 +125,9 @@ struct OptimizerOptions {
 // the supplement's flat spectrum loss, no warm-up, no axis clamp, no
 // projection. Used by the benchmarks that compare the two.
 OptimizerOptions SupplementOptimizerOptions();
+// Turns the low-frequency levers off and leaves every other option as it is:
+// the supplement's profile with a caller's budget, seed and schedule.
+void TurnOffLowFrequencyLevers(OptimizerOptions* options);
 
 // The weight c of L_SW that `options` selects for N points.
 double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
