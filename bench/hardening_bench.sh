@@ -22,22 +22,15 @@ for b in "$SERVER" "$PROBE"; do
 done
 
 WORK=$(mktemp -d /tmp/alignset-hardening-XXXXXX)
-SERVER_PID=
-stop_server() {
-  if [ -n "$SERVER_PID" ]; then kill -TERM "$SERVER_PID" 2>/dev/null || true; wait "$SERVER_PID" 2>/dev/null || true; fi
-  SERVER_PID=
-}
+. "$(dirname "$0")/../scripts/lib/loopback_server.sh"
+stop_server() { stop_loopback_server; }
 cleanup() { stop_server; rm -rf "$WORK"; }
 trap cleanup EXIT
 
 start_server() {  # extra flags...
-  rm -f "$WORK/port" "$WORK"/cache.sqlite*
-  "$SERVER" --listen 127.0.0.1:0 --port-file "$WORK/port" --db "$WORK/cache.sqlite" --log-level warn \
-    --shutdown-grace 1 "$@" >>"$WORK/server.log" 2>&1 &
-  SERVER_PID=$!
-  for _ in $(seq 100); do [ -s "$WORK/port" ] && break; sleep 0.1; done
-  [ -s "$WORK/port" ] || { echo "hardening_bench: server did not start" >&2; cat "$WORK/server.log" >&2; exit 1; }
-  ADDR=127.0.0.1:$(head -1 "$WORK/port")
+  rm -f "$WORK"/cache.sqlite*
+  start_loopback_server 10 "$WORK/server.log" "$SERVER" --db "$WORK/cache.sqlite" --log-level warn \
+    --shutdown-grace 1 "$@"
 }
 
 echo "# server: $SERVER"

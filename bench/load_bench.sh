@@ -19,22 +19,18 @@ PIN=()
 if [ -n "${CPUS:-}" ]; then PIN=(taskset -c "$CPUS"); fi
 
 WORK=$(mktemp -d /tmp/alignset-load-XXXXXX)
-SERVER_PID=
+. "$(dirname "$0")/../scripts/lib/loopback_server.sh"
 cleanup() {
-  if [ -n "$SERVER_PID" ]; then kill -TERM "$SERVER_PID" 2>/dev/null || true; wait "$SERVER_PID" 2>/dev/null || true; fi
+  stop_loopback_server
   rm -rf "$WORK"
 }
 trap cleanup EXIT
 
 "$LOAD" populate --db "$WORK/cache.sqlite" --n 4096,65536 --dir 30 --max-iterations 3000 --seed 1 >/dev/null
-"${PIN[@]}" "$SERVER" --listen 127.0.0.1:0 --port-file "$WORK/port" --db "$WORK/cache.sqlite" \
-  --max-iterations 3000 --seed 1 --log-level warn &
-SERVER_PID=$!
-for _ in $(seq 100); do [ -s "$WORK/port" ] && break; sleep 0.1; done
-[ -s "$WORK/port" ] || { echo "load_bench: server did not start" >&2; exit 1; }
-PORT=$(cat "$WORK/port")
+start_loopback_server 10 "$WORK/server.log" "${PIN[@]}" "$SERVER" --db "$WORK/cache.sqlite" \
+  --max-iterations 3000 --seed 1 --log-level warn
 
 echo "# alignset-server cache hits, loopback, $(nproc) cores visible${CPUS:+, pinned to CPUs $CPUS}"
 # --dir 120 is served from the canonical phi = 30 set with swap + invert.
-"${PIN[@]}" "$LOAD" run --server "127.0.0.1:$PORT" --n 4096,65536 --dir 120 --clients 1,8,64 \
+"${PIN[@]}" "$LOAD" run --server "$ADDR" --n 4096,65536 --dir 120 --clients 1,8,64 \
   --seconds "$SECONDS_PER_ROW" --warmup 0.5

@@ -24,24 +24,11 @@ OUT="${OUT:-$BUILD_DIR/quickstart-n$N-theta$THETA.txt}"
 SERVER="$BUILD_DIR/server/alignset-server"
 CLI="$BUILD_DIR/client/alignset"
 
-PORT_FILE="$(mktemp)"
 LOG="$BUILD_DIR/quickstart-server.log"
-# Port 0: the kernel picks a free loopback port, so a server already running
-# on the default port does not get in the way.
-"$SERVER" --listen 127.0.0.1:0 --port-file "$PORT_FILE" >"$LOG" 2>&1 &
-SERVER_PID=$!
-stop_server() {
-  kill -TERM "$SERVER_PID" 2>/dev/null || true
-  wait "$SERVER_PID" 2>/dev/null || true
-  rm -f "$PORT_FILE"
-}
-trap stop_server EXIT
-for _ in $(seq 1 100); do
-  [ -s "$PORT_FILE" ] && break
-  kill -0 "$SERVER_PID" 2>/dev/null || { cat "$LOG"; exit 1; }
-  sleep 0.1
-done
-ADDR="127.0.0.1:$(cat "$PORT_FILE")"
+. scripts/lib/loopback_server.sh
+trap stop_loopback_server EXIT
+: >"$LOG"
+start_loopback_server 10 "$LOG" "$SERVER"
 echo "alignset-server listening on $ADDR (log: $LOG)"
 
 echo

@@ -31,24 +31,11 @@ TWO_MAX_N="${TWO_MAX_N:-2048}"
 
 cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
 mkdir -p "$BUILD_DIR/render-cache" "$RAW"
-PORT_FILE="$(mktemp)"
 LOG="$BUILD_DIR/render-cache/server.log"
-"$BUILD_DIR/server/alignset-server" --listen 127.0.0.1:0 --port-file "$PORT_FILE" \
-  --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 \
-  --log-level warn >>"$LOG" 2>&1 &
-SERVER_PID=$!
-stop_server() {
-  kill -TERM "$SERVER_PID" 2>/dev/null || true
-  wait "$SERVER_PID" 2>/dev/null || true
-  rm -f "$PORT_FILE"
-}
-trap stop_server EXIT
-for _ in $(seq 1 300); do
-  [ -s "$PORT_FILE" ] && break
-  kill -0 "$SERVER_PID" 2>/dev/null || { tail "$LOG"; exit 1; }
-  sleep 0.1
-done
-ADDR="127.0.0.1:$(cat "$PORT_FILE")"
+. scripts/lib/loopback_server.sh
+trap stop_loopback_server EXIT
+start_loopback_server 30 "$LOG" "$BUILD_DIR/server/alignset-server" \
+  --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
 echo "render: alignset-server on $ADDR (cache $BUILD_DIR/render-cache/cache.sqlite)"
 
 "$BUILD_DIR/bench/render/render_bench" --server "$ADDR" --out "$RAW" --n "$N" \

@@ -9,9 +9,9 @@ set -euo pipefail
 BUILD="$1"
 SRC="$2"
 WORK="$(mktemp -d /tmp/alignset-consumer-XXXXXX)"
-SERVER_PID=""
+. "$SRC/scripts/lib/loopback_server.sh"
 cleanup() {
-  if [ -n "$SERVER_PID" ]; then kill -TERM "$SERVER_PID" 2>/dev/null || true; wait "$SERVER_PID" 2>/dev/null || true; fi
+  stop_loopback_server
   rm -rf "$WORK"
 }
 trap cleanup EXIT
@@ -51,16 +51,9 @@ c++ -O1 -o "$WORK/pc-consumer" "$SRC/tests/consumer/main.cc" \
   || fail "building the consumer with pkg-config failed"
 
 # 3. The installed server on loopback, and both consumers against it.
-"$PREFIX/bin/alignset-server" --listen 127.0.0.1:0 --port-file "$WORK/port" --db "$WORK/cache.sqlite" \
-  --max-iterations 30 --workers 1 --threads-per-worker 1 --log-level warn > "$WORK/server.log" 2>&1 &
-SERVER_PID=$!
-for _ in $(seq 1 300); do
-  [ -s "$WORK/port" ] && break
-  kill -0 "$SERVER_PID" 2>/dev/null || { cat "$WORK/server.log"; fail "the server exited"; }
-  sleep 0.1
-done
-[ -s "$WORK/port" ] || fail "the server wrote no port"
-ADDR="127.0.0.1:$(cat "$WORK/port")"
+start_loopback_server 30 "$WORK/server.log" "$PREFIX/bin/alignset-server" --db "$WORK/cache.sqlite" \
+  --max-iterations 30 --workers 1 --threads-per-worker 1 --log-level warn \
+  || fail "the installed server did not start"
 "$WORK/cmake-build/alignset_consumer" "$ADDR"
 "$WORK/pc-consumer" "$ADDR"
 # The installed Python package too, when the build made it.
