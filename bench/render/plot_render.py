@@ -80,6 +80,8 @@ def main():
         if r["sampler"] not in samplers:
             samplers.append(r["sampler"])
     ns = sorted({int(r["n"]) for r in rows})
+    # The comparison tables start at N = 256, where the acceptance is judged.
+    table_cells = [(s, n) for s in scenes for n in ns if n >= 256]
     images = os.path.join(raw, "images")
 
     def val(scene, sampler, n, col):
@@ -246,19 +248,16 @@ def main():
             md.append("The same with the pre-pass %s (variant %s):" % (label[len("aligned-"):], label))
             md.append("")
         acc = []
-        for s in scenes:
-            for n in ns:
-                if n < 256:
-                    continue
-                al, ae = val(s, label, n, "mse_edge"), val(s, "aligned-exact", n, "mse_edge")
-                ow, sh = val(s, "owen-sobol", n, "mse_edge"), val(s, "pmj02bn-sheared", n, "mse_edge")
-                e_al, e_ae = edge_sq(s, label, n), edge_sq(s, "aligned-exact", n)
-                e_ow, e_sh = edge_sq(s, "owen-sobol", n), edge_sq(s, "pmj02bn-sheared", n)
-                m = evaluations(label, s)
-                acc.append([s, str(n), fmt(al), fmt(ae), fmt(ow), fmt(sh), ratio_ci(e_ow, e_al),
-                            ratio_ci(e_sh, e_al), ratio_ci(e_al, e_ae),
-                            "%.2f" % (m / n) if m else "—",
-                            verdict(al, ow, sh, ratio_bounds(e_ow, e_al), ratio_bounds(e_sh, e_al))])
+        for s, n in table_cells:
+            al, ae = val(s, label, n, "mse_edge"), val(s, "aligned-exact", n, "mse_edge")
+            ow, sh = val(s, "owen-sobol", n, "mse_edge"), val(s, "pmj02bn-sheared", n, "mse_edge")
+            e_al, e_ae = edge_sq(s, label, n), edge_sq(s, "aligned-exact", n)
+            e_ow, e_sh = edge_sq(s, "owen-sobol", n), edge_sq(s, "pmj02bn-sheared", n)
+            m = evaluations(label, s)
+            acc.append([s, str(n), fmt(al), fmt(ae), fmt(ow), fmt(sh), ratio_ci(e_ow, e_al),
+                        ratio_ci(e_sh, e_al), ratio_ci(e_al, e_ae),
+                        "%.2f" % (m / n) if m else "—",
+                        verdict(al, ow, sh, ratio_bounds(e_ow, e_al), ratio_bounds(e_sh, e_al))])
         md.append(table(["scene", "N", label, "aligned-exact", "owen-sobol", "pmj02bn-sheared",
                          "owen-sobol / " + label, "sheared / " + label,
                          "cost of estimating (%s / exact)" % label, "pre-pass / N", label + " beats both"], acc))
@@ -266,13 +265,10 @@ def main():
     md.append("The bound: aligned-exact (θ from the geometry) against the same baselines.")
     md.append("")
     bound = []
-    for s in scenes:
-        for n in ns:
-            if n < 256:
-                continue
-            e_ae = edge_sq(s, "aligned-exact", n)
-            bound.append([s, str(n), ratio_ci(edge_sq(s, "owen-sobol", n), e_ae),
-                          ratio_ci(edge_sq(s, "pmj02bn-sheared", n), e_ae)])
+    for s, n in table_cells:
+        e_ae = edge_sq(s, "aligned-exact", n)
+        bound.append([s, str(n), ratio_ci(edge_sq(s, "owen-sobol", n), e_ae),
+                      ratio_ci(edge_sq(s, "pmj02bn-sheared", n), e_ae)])
     md.append(table(["scene", "N", "owen-sobol / aligned-exact", "sheared / aligned-exact"], bound))
     md.append("")
 
@@ -280,42 +276,33 @@ def main():
     md.append("## Pixels without a dominant direction: Owen-Sobol or the axis set")
     md.append("")
     pol = []
-    for s in scenes:
-        for n in ns:
-            if n < 256:
-                continue
-            for col, what in (("mse_edge_est_none", "edge pixels the estimator calls direction-less"),
-                              ("mse_smooth_est_none", "smooth pixels the estimator calls direction-less")):
-                a, b = val(s, "aligned", n, col), val(s, "aligned-none-axis", n, col)
-                pol.append([s, str(n), what, fmt(a), fmt(b), "%.2f" % (b / a) if a > 0 else "—"])
+    for s, n in table_cells:
+        for col, what in (("mse_edge_est_none", "edge pixels the estimator calls direction-less"),
+                          ("mse_smooth_est_none", "smooth pixels the estimator calls direction-less")):
+            a, b = val(s, "aligned", n, col), val(s, "aligned-none-axis", n, col)
+            pol.append([s, str(n), what, fmt(a), fmt(b), "%.2f" % (b / a) if a > 0 else "—"])
     md.append(table(["scene", "N", "pixels", "Owen-Sobol", "axis set", "axis / Owen-Sobol"], pol))
     md.append("")
     md.append("## Two edges in a pixel: two-direction sets against the stronger edge's set (exact θ)")
     md.append("")
     two = []
-    for s in scenes:
-        for n in ns:
-            if n < 256:
-                continue
-            a, b = val(s, "aligned-exact", n, "mse_edge_two"), val(s, "aligned-exact-1dir", n, "mse_edge_two")
-            if not math.isfinite(b):
-                continue  # above render_bench's --two-max-n: no two-direction sets
-            two.append([s, str(n), fmt(a), fmt(b), "%.2f" % (b / a) if a > 0 else "—"])
+    for s, n in table_cells:
+        a, b = val(s, "aligned-exact", n, "mse_edge_two"), val(s, "aligned-exact-1dir", n, "mse_edge_two")
+        if not math.isfinite(b):
+            continue  # above render_bench's --two-max-n: no two-direction sets
+        two.append([s, str(n), fmt(a), fmt(b), "%.2f" % (b / a) if a > 0 else "—"])
     md.append(table(["scene", "N", "two-direction sets", "one-direction set", "one / two"], two))
     md.append("")
     md.append("## Per-pixel decorrelation of the aligned sets (exact θ): a CP shift per pixel or one for all")
     md.append("")
     dec = []
-    for s in scenes:
-        for n in ns:
-            if n < 256:
-                continue
-            a, b = data.get((s, "aligned-exact"), {}).get(n), data.get((s, "aligned-exact-noshift"), {}).get(n)
-            if not a or not b:
-                continue
-            dec.append([s, str(n), fmt(float(a["mse_edge"])), fmt(float(b["mse_edge"])),
-                        fmt(float(a["blur_rms_2.0"] if "blur_rms_2.0" in a else a["blur_rms_2"])),
-                        fmt(float(b["blur_rms_2.0"] if "blur_rms_2.0" in b else b["blur_rms_2"]))])
+    for s, n in table_cells:
+        a, b = data.get((s, "aligned-exact"), {}).get(n), data.get((s, "aligned-exact-noshift"), {}).get(n)
+        if not a or not b:
+            continue
+        dec.append([s, str(n), fmt(float(a["mse_edge"])), fmt(float(b["mse_edge"])),
+                    fmt(float(a["blur_rms_2.0"] if "blur_rms_2.0" in a else a["blur_rms_2"])),
+                    fmt(float(b["blur_rms_2.0"] if "blur_rms_2.0" in b else b["blur_rms_2"]))])
     md.append(table(["scene", "N", "edge MSE, shift per pixel", "edge MSE, one shift",
                      "blur RMS σ=2, per pixel", "blur RMS σ=2, one shift"], dec))
     md.append("")
