@@ -2,9 +2,7 @@
 // statuses. (The aligned samplers against a real server: tests/e2e.)
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <cstdlib>
-#include <sys/wait.h>
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -13,26 +11,16 @@
 #include "bench/render/pixel_samplers.h"
 #include "bench/render/renderer.h"
 #include "bench/render/scene.h"
+#include "tests/client/cli_runner.h"
 
 namespace alignset::render {
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using test_support::CliRun;
+using test_support::RunCli;
 
-Result RunCli(const std::string& args) {
-  Result r;
-  FILE* p = popen((std::string(ALIGNSET_CLI_PATH) + " " + args + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  size_t got;
-  while ((got = fread(buf, 1, sizeof(buf), p)) > 0) r.output.append(buf, got);
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
+// Standard output and error together, as a user sees them on a terminal.
+std::string Said(const CliRun& r) { return r.out + r.err; }
 
 class RenderCli : public ::testing::Test {
  protected:
@@ -46,8 +34,8 @@ class RenderCli : public ::testing::Test {
 };
 
 TEST_F(RenderCli, ReferenceIsTheExactImage) {
-  const Result r = RunCli("render --scene shadow --size 24 --reference -o " + dir_ + "/ref.npy");
-  ASSERT_EQ(r.status, 0) << r.output;
+  const CliRun r = RunCli("render --scene shadow --size 24 --reference -o " + dir_ + "/ref.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
   std::vector<size_t> shape;
   auto img = ReadNpy(dir_ + "/ref.npy", &shape);
   ASSERT_TRUE(img.ok()) << img.status().message();
@@ -56,9 +44,9 @@ TEST_F(RenderCli, ReferenceIsTheExactImage) {
 }
 
 TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
-  const Result r = RunCli("render --scene antialias --size 32 --sampler owen-sobol -n 16 -s 3 -o " + dir_ + "/os.npy");
-  ASSERT_EQ(r.status, 0) << r.output;
-  EXPECT_NE(r.output.find("MSE against the exact image"), std::string::npos) << r.output;
+  const CliRun r = RunCli("render --scene antialias --size 32 --sampler owen-sobol -n 16 -s 3 -o " + dir_ + "/os.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("MSE against the exact image"), std::string::npos) << Said(r);
   std::vector<size_t> shape;
   auto img = ReadNpy(dir_ + "/os.npy", &shape);
   ASSERT_TRUE(img.ok());
@@ -67,8 +55,8 @@ TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
   ASSERT_TRUE(sampler.ok());
   EXPECT_EQ(*img, Render(scene, **sampler, 3, 1));
   // Line samples across the estimated edge, and the screen-space sampler.
-  EXPECT_EQ(RunCli("render --size 16 --sampler line --orientation random -n 8 -o " + dir_ + "/l.npy").status, 0);
-  EXPECT_EQ(RunCli("render --size 16 --sampler screen-space-rank1 -n 8 -o " + dir_ + "/s.npy").status, 0);
+  EXPECT_EQ(RunCli("render --size 16 --sampler line --orientation random -n 8 -o " + dir_ + "/l.npy").exit_code, 0);
+  EXPECT_EQ(RunCli("render --size 16 --sampler screen-space-rank1 -n 8 -o " + dir_ + "/s.npy").exit_code, 0);
 }
 
 TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
@@ -77,14 +65,15 @@ TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
         std::string("render --reference --sampler owen-sobol -o x.npy"),
         std::string("render --sampler owen-sobol -n 16 -o x.txt"), std::string("render --scene teapot --reference -o x.npy"),
         std::string("render --sampler jittered -n 15 -o x.npy")}) {
-    const Result r = RunCli(args + " --size 8");
-    EXPECT_EQ(r.status, 2) << args << ": " << r.output;
-    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << args << ": " << r.output;
+    const CliRun r = RunCli(args + " --size 8");
+    const std::string said = Said(r);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << said;
+    EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 1) << args << ": " << said;
   }
   // A server that is not there is a failure, not a usage error.
-  const Result r = RunCli("render --size 8 --sampler aligned -n 16 --server 127.0.0.1:1 --timeout 5 -o " + dir_ + "/a.npy");
-  EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("UNAVAILABLE"), std::string::npos) << r.output;
+  const CliRun r = RunCli("render --size 8 --sampler aligned -n 16 --server 127.0.0.1:1 --timeout 5 -o " + dir_ + "/a.npy");
+  EXPECT_EQ(r.exit_code, 1) << Said(r);
+  EXPECT_NE(Said(r).find("UNAVAILABLE"), std::string::npos) << Said(r);
 }
 
 }  // namespace
