@@ -7,7 +7,8 @@
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
-//        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR]
+//        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
+//        --tolerance T]
 //       [--cache DIR] [--out results.tsv]
 //
 // --profile supplement is algorithm version 2 (the flat loss on the
@@ -121,6 +122,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->opt.weighting.exponent = std::stod(next());
     } else if (a == "--margin") {
       o->opt.final_margin = std::stod(next());
+    } else if (a == "--tolerance") {
+      o->opt.engine_tolerance = std::stod(next());
     } else if (a == "--zero") {
       o->opt.zero_radius = std::stod(next());
     } else if (a == "--warmup") {
@@ -143,7 +146,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
           "  [--profile current|supplement] [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
-          "  [--cache DIR] [--out FILE.tsv]\n");
+          "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
       std::exit(0);
     } else {
       std::fprintf(stderr, "integrand_family: unknown option %s (try --help)\n", a.c_str());
@@ -228,7 +231,7 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
-    << fp.radius << ";v=4";
+    << fp.radius << ";tol=" << p.engine_tolerance << ";v=4";
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
   char hex[17];
@@ -320,12 +323,12 @@ int Run(const Options& o) {
   std::FILE* tsv = o.out.empty() ? nullptr : std::fopen(o.out.c_str(), "w");
   if (tsv) std::fprintf(tsv, "theta\tn\tintegrand\taligned\towen_sobol\tratio\n");
   std::printf("# profile %s: weighting p=%g (warm-up p=%g for %g), stratify %d, zero radius %g, "
-              "margin %g, K x(%g, %g, %g), sw=%g iterations=%d; %d seed(s), "
+              "margin %g, K x(%g, %g, %g), sw=%g iterations=%d, engine tolerance %g; %d seed(s), "
               "Owen-Sobol mean of %d scrambles, %d shifts, %d edge offsets\n",
               o.supplement ? "supplement (v2)" : "current", o.opt.weighting.exponent,
               o.opt.warmup_weighting.exponent, o.opt.warmup_fraction, o.opt.stratify_axes ? 1 : 0,
               o.opt.zero_radius, o.opt.final_margin, o.kl, o.kw, o.kr, o.opt.sw_weight,
-              o.opt.max_iterations, o.seeds, o.scrambles, o.shifts, o.offsets);
+              o.opt.max_iterations, o.opt.engine_tolerance, o.seeds, o.scrambles, o.shifts, o.offsets);
   double worst_ratio = 0.0;
   for (double theta : o.theta) {
     const std::vector<Member> family = Family(theta, o.theta2, o.offsets);

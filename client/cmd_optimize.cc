@@ -29,12 +29,14 @@ struct OptimizeOptions {
   std::string out;
   // Overrides of the frequency set's shape; unset ones keep the default.
   std::optional<double> length, width, radius;
+  // The engine's accuracy during the descent; unset: the profile's.
+  std::optional<double> engine_tolerance;
   // -m: several sets, one per seed, written as a multi-set file.
   std::optional<int> sets;
   std::string revert_on = "spectrum";
   // s in L = s L_Spec + c L_SW (core/spectral/scaled_loss_engine.h).
   double spectrum_weight = 1.0;
-  // "current" (algorithm version 3) or "supplement" (the paper's flat loss
+  // "current" (algorithm version 4) or "supplement" (the paper's flat loss
   // and K, alignset's version 2), for comparisons.
   std::string profile = "current";
 };
@@ -67,6 +69,7 @@ int RunOptimize(const OptimizeOptions& o) {
   const bool supplement = o.profile == "supplement";
   OptimizerOptions options = o.optimizer;
   if (supplement) TurnOffLowFrequencyLevers(&options);
+  if (o.engine_tolerance) options.engine_tolerance = *o.engine_tolerance;
   if (o.revert_on == "total") {
     options.divergence_signal = DivergenceSignal::kTotalLoss;
   } else if (o.revert_on != "spectrum") {
@@ -231,6 +234,11 @@ void AddOptimizeCommand(CLI::App& app) {
   c->add_option("--revert-divisor", o->optimizer.revert_divisor,
                 "learning-rate divisor on a revert")
       ->check(FiniteNumber())
+      ->group(tuning);
+  c->add_option("--engine-tolerance", o->engine_tolerance,
+                "accuracy asked of the engine during the descent (default: 1e-8 current, "
+                "1e-11 supplement; 0: the engine's own)")
+      ->check(FiniteIn(0.0, 1e-2))
       ->group(tuning);
   c->add_option("--length", o->length, "strip half-length L (default: from N)")
       ->check(FiniteNumber())

@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 168,
+static_assert(sizeof(OptimizerOptions) == 176,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -58,6 +58,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "stratify_axes", static_cast<int>(o.stratify_axes));
   Field(t, "zero_radius", o.zero_radius);
   Field(t, "final_margin", o.final_margin);
+  Field(t, "engine_tolerance", o.engine_tolerance);
   Field(t, "beta1", o.beta1);
   Field(t, "beta2", o.beta2);
   Field(t, "epsilon", o.epsilon);

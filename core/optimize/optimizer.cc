@@ -11,6 +11,7 @@
 #include "core/optimize/low_frequency_projection.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/spectral/direction_budget.h"
+#include "core/spectral/fast_engine.h"
 #include "core/optimize/sliced_wasserstein.h"
 
 namespace alignset {
@@ -111,6 +112,7 @@ void TurnOffLowFrequencyLevers(OptimizerOptions* options) {
   options->stratify_axes = false;
   options->zero_radius = 0.0;
   options->final_margin = 0.0;
+  options->engine_tolerance = FastEngine::kDefaultTolerance;
 }
 
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {
@@ -198,6 +200,9 @@ Status ValidateOptions(const OptimizerOptions& o) {
   }
   if (!(o.zero_radius >= 0.0 && o.zero_radius <= 16.0)) {
     return Status::InvalidArgument("zero_radius must be in [0, 16]");
+  }
+  if (!(o.engine_tolerance == 0.0 || (o.engine_tolerance >= 1e-14 && o.engine_tolerance <= 1e-2))) {
+    return Status::InvalidArgument("engine_tolerance must be 0 or in [1e-14, 1e-2]");
   }
   if (!(o.warmup_fraction >= 0.0 && o.warmup_fraction < 1.0)) {
     return Status::InvalidArgument("warmup_fraction must be in [0, 1)");
@@ -319,6 +324,7 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
     const std::vector<double> dirs = AnisotropyDirections(problem.directions);
     s.k = BuildFrequencySet(s.result.frequency_params, dirs);
     s.result.frequency_count = s.k.size();
+    if (options.engine_tolerance > 0.0) engine.SetTolerance(options.engine_tolerance);
     engine.SetFrequencies(s.k);
     s.sw = std::make_unique<SlicedWasserstein>(problem.n, dirs);
     s.first_lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
@@ -346,7 +352,8 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
     s.started = true;
   } else if (!engine_holds_k) {
     // Everything the engine holds for this run: K, and the weights of the
-    // current phase (SetFrequencies resets them).
+    // current phase (SetFrequencies resets them), at this run's accuracy.
+    if (options.engine_tolerance > 0.0) engine.SetTolerance(options.engine_tolerance);
     engine.SetFrequencies(s.k);
     engine.SetLossWeights(s.phases[s.phase].weights);
   }

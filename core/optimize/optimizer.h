@@ -93,6 +93,15 @@ struct OptimizerOptions {
   // 1 - 2 margin of its stratum (0: anywhere in it); points near the centre
   // of their column lower the axis-edge variance about 2x.
   double final_margin = 0.4;
+  // The accuracy the optimizer asks of its engine (SpectralEngine::
+  // SetTolerance); 0 leaves the engine as it is. A descent needs far less
+  // than an analysis: with 1e-8 instead of the fast engine's default 1e-11
+  // (kernel width 9 instead of 12) the runs follow the same path (the same
+  // losses to four digits and the same reverts at N = 1024 and 4096) and
+  // the fast engine spreads and interpolates (3 w^2 per point) about 1.8x
+  // less (README, "Choices: the low-frequency floor"). Version 2 used the
+  // engine's default.
+  double engine_tolerance = 1e-8;
   double beta1 = 0.9;
   double beta2 = 0.999;
   double epsilon = 1e-12;
@@ -125,8 +134,9 @@ struct OptimizerOptions {
 // the supplement's flat spectrum loss, no warm-up, no axis clamp, no
 // projection. Used by the benchmarks that compare the two.
 OptimizerOptions SupplementOptimizerOptions();
-// Turns the low-frequency levers off and leaves every other option as it is:
-// the supplement's profile with a caller's budget, seed and schedule.
+// Turns the low-frequency levers off and asks the engine for its full
+// accuracy again, and leaves every other option as it is: the supplement's
+// profile (algorithm version 2) with a caller's budget, seed and schedule.
 void TurnOffLowFrequencyLevers(OptimizerOptions* options);
 
 // The weight c of L_SW that `options` selects for N points.

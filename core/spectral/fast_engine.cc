@@ -22,6 +22,20 @@ size_t FastEngine::grid_cells() const {
   return cells;
 }
 
+void FastEngine::SetTolerance(double tolerance) {
+  EsKernel kernel(tolerance);
+  // The kernel is a function of its width alone (beta = 2.30 width).
+  if (kernel.width() == kernel_.width()) return;
+  kernel_ = std::move(kernel);
+  // The grids hold the kernel's Fourier transform and width: rebuild them
+  // for the same K, keeping the loss weights.
+  if (k_.empty()) return;
+  std::vector<double> weights = std::move(weights_);
+  const std::vector<Frequency> k = k_;
+  SetFrequencies(k);
+  weights_ = std::move(weights);
+}
+
 void FastEngine::SetLossWeights(std::vector<double> weights) { weights_ = std::move(weights); }
 
 void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {

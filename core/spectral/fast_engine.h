@@ -34,8 +34,9 @@ namespace alignset {
 // F and the gradient are small sums of large terms, the relative error
 // grows: at N = 256 after 1000 iterations (L_Spec 1e-4) tolerance 1e-9
 // gives a gradient error of 6e-6, 1e-11 gives 9e-8. Hence the default
-// 1e-11 (kernel width 12); optimizations that only need a descent direction
-// can pass a looser one. Results do not depend on the thread count. Exactly
+// 1e-11 (kernel width 12) for analyses; the optimizer, which needs only a
+// descent direction, asks for 1e-8 (width 9) through SetTolerance
+// (OptimizerOptions::engine_tolerance). Results do not depend on the thread count. Exactly
 // `threads` threads do the work (FFTW runs single-threaded, one grid per
 // thread).
 class FastEngine final : public SpectralEngine {
@@ -54,6 +55,9 @@ class FastEngine final : public SpectralEngine {
   void Evaluate(const PointSet& points, bool with_gradient, SpectrumEvaluation* out) override;
   void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
                         std::vector<std::complex<double>>* spectrum) override;
+  // Rebuilds the kernel (and the grids, which depend on its width) when the
+  // tolerance asks for another width.
+  void SetTolerance(double tolerance) override;
 
   // Introspection for tests and benchmarks.
   int kernel_width() const { return kernel_.width(); }

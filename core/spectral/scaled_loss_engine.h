@@ -35,6 +35,7 @@ class ScaledLossEngine final : public SpectralEngine {
                         std::vector<std::complex<double>>* spectrum) override {
     inner_.EvaluateWeighted(points, strengths, spectrum);
   }
+  void SetTolerance(double tolerance) override { inner_.SetTolerance(tolerance); }
 
  private:
   SpectralEngine& inner_;

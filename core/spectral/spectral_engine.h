@@ -52,6 +52,14 @@ class SpectralEngine {
   // gradient.
   virtual void EvaluateWeighted(const PointSet& points, const std::vector<double>& strengths,
                                 std::vector<std::complex<double>>* spectrum) = 0;
+
+  // The relative accuracy the caller needs of F and the gradient from now
+  // on (K and the loss weights are kept). An optimization needs a descent
+  // direction, an analysis needs the numbers, so the optimizer asks for its
+  // profile's tolerance (OptimizerOptions::engine_tolerance). Engines whose
+  // accuracy is fixed ignore it: the direct engine is exact, the CUDA
+  // engine has its own.
+  virtual void SetTolerance(double tolerance) { (void)tolerance; }
 };
 
 enum class EngineKind { kAuto, kDirect, kFast, kCuda };

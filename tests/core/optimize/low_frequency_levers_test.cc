@@ -178,6 +178,9 @@ TEST(Optimizer, BadLeverSettingsAreRefused) {
       [](OptimizerOptions& o) { o.warmup_fraction = 1.0; },
       [](OptimizerOptions& o) { o.zero_radius = -2; },
       [](OptimizerOptions& o) { o.final_margin = 0.5; },
+      [](OptimizerOptions& o) { o.engine_tolerance = -1e-8; },
+      [](OptimizerOptions& o) { o.engine_tolerance = 0.5; },
+      [](OptimizerOptions& o) { o.engine_tolerance = NAN; },
   };
   for (const auto& mutate : bad) {
     OptimizerOptions o;
@@ -188,6 +191,38 @@ TEST(Optimizer, BadLeverSettingsAreRefused) {
   }
 }
 
+TEST(Optimizer, AsksItsEngineForTheProfilesTolerance) {
+  // The descent runs at the profile's tolerance, set on the engine before
+  // the first evaluation (and again on every resume); with 0 the engine is
+  // left as the caller made it. The result is the one a fresh engine at that
+  // tolerance gives.
+  OptimizationProblem problem;
+  problem.n = 300;
+  problem.directions = {25.0};
+  OptimizerOptions o;
+  o.max_iterations = 60;
+  FastEngine engine(2);
+  ASSERT_EQ(engine.kernel_width(), FastEngine(1).kernel_width());
+  auto r = Optimize(problem, o, engine);
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(engine.kernel_width(), FastEngine(1, o.engine_tolerance).kernel_width());
+  EXPECT_LT(engine.kernel_width(), FastEngine(1).kernel_width());
+  FastEngine made_loose(2, o.engine_tolerance);
+  auto same = Optimize(problem, o, made_loose);
+  ASSERT_TRUE(same.ok());
+  EXPECT_EQ(same->points, r->points);
+
+  OptimizerOptions untouched = o;
+  untouched.engine_tolerance = 0.0;
+  FastEngine tight(2);
+  auto t = Optimize(problem, untouched, tight);
+  ASSERT_TRUE(t.ok());
+  EXPECT_EQ(tight.kernel_width(), FastEngine(1).kernel_width());
+  // Same path, other rounding: the sets differ, their losses hardly.
+  EXPECT_NE(t->points, r->points);
+  EXPECT_NEAR(t->final_loss.total, r->final_loss.total, 1e-3 * r->final_loss.total);
+}
+
 TEST(Optimizer, SupplementOptionsTurnEveryLeverOff) {
   const OptimizerOptions s = SupplementOptimizerOptions();
   EXPECT_TRUE(s.weighting.flat());
@@ -195,6 +230,8 @@ TEST(Optimizer, SupplementOptionsTurnEveryLeverOff) {
   EXPECT_FALSE(s.stratify_axes);
   EXPECT_EQ(s.zero_radius, 0.0);
   EXPECT_EQ(s.final_margin, 0.0);
+  // Version 2 ran at the fast engine's full accuracy.
+  EXPECT_EQ(s.engine_tolerance, FastEngine::kDefaultTolerance);
   // Everything else is shared with the current defaults.
   OptimizerOptions d;
   d.weighting = s.weighting;
@@ -203,6 +240,7 @@ TEST(Optimizer, SupplementOptionsTurnEveryLeverOff) {
   d.stratify_axes = s.stratify_axes;
   d.zero_radius = s.zero_radius;
   d.final_margin = s.final_margin;
+  d.engine_tolerance = s.engine_tolerance;
   EXPECT_EQ(d.max_iterations, s.max_iterations);
   EXPECT_EQ(d.sw_weight, s.sw_weight);
   EXPECT_EQ(d.learning_rate, s.learning_rate);

@@ -202,6 +202,46 @@ TEST(FastEngineTest, ReusesPlansAcrossPointSetsAndSizes) {
   }
 }
 
+TEST(FastEngineTest, SetToleranceRebuildsForTheBoundKAndKeepsTheWeights) {
+  // The optimizer asks a bound engine for its descent tolerance: the engine
+  // must then compute exactly what a fresh engine at that tolerance does,
+  // with K and the loss weights kept, and come back bit for bit when the
+  // full accuracy is asked for again.
+  const std::vector<Frequency> k =
+      BuildFrequencySet(DefaultFrequencyParams(700), AnisotropyDirections({52.0}));
+  std::vector<double> w;
+  for (const Frequency& v : k) w.push_back(std::pow(std::hypot(v.a, v.b), -2.5));
+  const PointSet points = OwenScrambledSobol(700, 4);
+  auto evaluate = [&](FastEngine& e) {
+    SpectrumEvaluation out;
+    e.Evaluate(points, true, &out);
+    return out;
+  };
+  FastEngine fresh_tight(2), fresh_loose(2, 1e-8), engine(2);
+  for (FastEngine* e : {&fresh_tight, &fresh_loose, &engine}) {
+    e->SetFrequencies(k);
+    e->SetLossWeights(w);
+  }
+  const SpectrumEvaluation tight = evaluate(fresh_tight), loose = evaluate(fresh_loose);
+  engine.SetTolerance(1e-8);
+  EXPECT_EQ(engine.kernel_width(), fresh_loose.kernel_width());
+  EXPECT_LT(engine.kernel_width(), fresh_tight.kernel_width());
+  const SpectrumEvaluation asked = evaluate(engine);
+  EXPECT_EQ(asked.loss, loose.loss);
+  EXPECT_EQ(asked.spectrum, loose.spectrum);
+  EXPECT_EQ(asked.gradient, loose.gradient);
+  // Coarser, but within what was asked of it (and the weights still apply:
+  // the weighted loss of the tight engine, not the flat one).
+  EXPECT_GT(RelativeError(asked.spectrum, tight.spectrum), 1e-12);
+  EXPECT_LT(RelativeError(asked.spectrum, tight.spectrum), 1e-7);
+  EXPECT_LT(RelativeError(asked.gradient, tight.gradient), 1e-6);
+  EXPECT_LT(std::abs(asked.loss - tight.loss) / tight.loss, 1e-6);
+  engine.SetTolerance(FastEngine::kDefaultTolerance);
+  const SpectrumEvaluation back = evaluate(engine);
+  EXPECT_EQ(back.loss, tight.loss);
+  EXPECT_EQ(back.gradient, tight.gradient);
+}
+
 TEST(FastEngineTest, LossWeightsMatchTheDirectEngine) {
   const std::vector<Frequency> k =
       BuildFrequencySet(DefaultFrequencyParams(1500), AnisotropyDirections({38.0}));
