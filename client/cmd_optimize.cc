@@ -236,8 +236,8 @@ void AddOptimizeCommand(CLI::App& app) {
       ->check(FiniteNumber())
       ->group(tuning);
   c->add_option("--engine-tolerance", o->engine_tolerance,
-                "accuracy asked of the engine during the descent (default: 1e-8 current, "
-                "1e-11 supplement; 0: the engine's own)")
+                "accuracy asked of the engine during the descent (0: current 1e-8 up to "
+                "N = 4096 and 1e-11 above; supplement 1e-11)")
       ->check(FiniteIn(0.0, 1e-2))
       ->group(tuning);
   c->add_option("--length", o->length, "strip half-length L (default: from N)")

@@ -123,6 +123,14 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {
       std::lround(kBase * per_direction * std::sqrt(std::max(1.0, n / kBaseN))));
 }
 
+double DefaultEngineTolerance(uint32_t n) {
+  return n <= 4096 ? 1e-8 : FastEngine::kDefaultTolerance;
+}
+
+double EffectiveEngineTolerance(const OptimizerOptions& options, uint32_t n) {
+  return options.engine_tolerance > 0.0 ? options.engine_tolerance : DefaultEngineTolerance(n);
+}
+
 int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n, int arbitrary_directions) {
   return options.max_iterations > 0 ? options.max_iterations
                                     : DefaultIterationBudget(n, arbitrary_directions);
@@ -324,7 +332,7 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
     const std::vector<double> dirs = AnisotropyDirections(problem.directions);
     s.k = BuildFrequencySet(s.result.frequency_params, dirs);
     s.result.frequency_count = s.k.size();
-    if (options.engine_tolerance > 0.0) engine.SetTolerance(options.engine_tolerance);
+    engine.SetTolerance(EffectiveEngineTolerance(options, problem.n));
     engine.SetFrequencies(s.k);
     s.sw = std::make_unique<SlicedWasserstein>(problem.n, dirs);
     s.first_lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
@@ -353,7 +361,7 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
   } else if (!engine_holds_k) {
     // Everything the engine holds for this run: K, and the weights of the
     // current phase (SetFrequencies resets them), at this run's accuracy.
-    if (options.engine_tolerance > 0.0) engine.SetTolerance(options.engine_tolerance);
+    engine.SetTolerance(EffectiveEngineTolerance(options, problem.n));
     engine.SetFrequencies(s.k);
     engine.SetLossWeights(s.phases[s.phase].weights);
   }

@@ -94,14 +94,8 @@ struct OptimizerOptions {
   // of their column lower the axis-edge variance about 2x.
   double final_margin = 0.4;
   // The accuracy the optimizer asks of its engine (SpectralEngine::
-  // SetTolerance); 0 leaves the engine as it is. A descent needs far less
-  // than an analysis: with 1e-8 instead of the fast engine's default 1e-11
-  // (kernel width 9 instead of 12) the runs follow the same path (the same
-  // losses to four digits and the same reverts at N = 1024 and 4096) and
-  // the fast engine spreads and interpolates (3 w^2 per point) about 1.8x
-  // less (README, "Choices: the low-frequency floor"). Version 2 used the
-  // engine's default.
-  double engine_tolerance = 1e-8;
+  // SetTolerance) for the descent; 0 selects DefaultEngineTolerance(N).
+  double engine_tolerance = 0.0;
   double beta1 = 0.9;
   double beta2 = 0.999;
   double epsilon = 1e-12;
@@ -156,6 +150,20 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 // The budget `options` selects for the problem.
 int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
                            int arbitrary_directions = 1);
+
+// The engine accuracy alignset's descent asks for: 1e-8 up to N = 4096, the
+// fast engine's full 1e-11 above. A descent needs less than an analysis: at
+// N = 1024 and 4096 (θ = 30° and 82°, 2 seeds) the runs at 1e-8 (kernel
+// width 9 instead of 12) follow the same path as at 1e-11, the same final
+// losses to four digits and the same reverts, and the run takes about 17%
+// less time at N = 4096. Above, F's absolute error (~ tolerance N) nears the lowest
+// frequencies' own size, and at 16384 and 65536 the looser runs took other
+// paths (the Gaussian 2.6x and 6.5x worse, one seed; README, "Choices: the
+// low-frequency floor").
+double DefaultEngineTolerance(uint32_t n);
+
+// The tolerance `options` selects for N points.
+double EffectiveEngineTolerance(const OptimizerOptions& options, uint32_t n);
 
 // The first step size, scaled to the highest suppressed frequency: a step of
 // lr moves the phase at frequency |v| by 2 pi |v| lr, so lr ~ 1 / |v|max keeps

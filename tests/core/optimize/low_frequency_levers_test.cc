@@ -191,10 +191,21 @@ TEST(Optimizer, BadLeverSettingsAreRefused) {
   }
 }
 
+TEST(Optimizer, DescentToleranceIsLooseOnlyWhereItWasMeasuredHarmless) {
+  EXPECT_EQ(DefaultEngineTolerance(256), 1e-8);
+  EXPECT_EQ(DefaultEngineTolerance(4096), 1e-8);
+  EXPECT_EQ(DefaultEngineTolerance(4097), FastEngine::kDefaultTolerance);
+  EXPECT_EQ(DefaultEngineTolerance(65536), FastEngine::kDefaultTolerance);
+  OptimizerOptions o;
+  EXPECT_EQ(EffectiveEngineTolerance(o, 1024), 1e-8);
+  o.engine_tolerance = 1e-6;
+  EXPECT_EQ(EffectiveEngineTolerance(o, 65536), 1e-6);
+}
+
 TEST(Optimizer, AsksItsEngineForTheProfilesTolerance) {
   // The descent runs at the profile's tolerance, set on the engine before
-  // the first evaluation (and again on every resume); with 0 the engine is
-  // left as the caller made it. The result is the one a fresh engine at that
+  // the first evaluation (and again on every resume), whatever the caller
+  // made the engine with. The result is the one a fresh engine at that
   // tolerance gives.
   OptimizationProblem problem;
   problem.n = 300;
@@ -205,20 +216,20 @@ TEST(Optimizer, AsksItsEngineForTheProfilesTolerance) {
   ASSERT_EQ(engine.kernel_width(), FastEngine(1).kernel_width());
   auto r = Optimize(problem, o, engine);
   ASSERT_TRUE(r.ok()) << r.status().ToString();
-  EXPECT_EQ(engine.kernel_width(), FastEngine(1, o.engine_tolerance).kernel_width());
+  EXPECT_EQ(engine.kernel_width(), FastEngine(1, 1e-8).kernel_width());
   EXPECT_LT(engine.kernel_width(), FastEngine(1).kernel_width());
-  FastEngine made_loose(2, o.engine_tolerance);
+  FastEngine made_loose(2, 1e-8);
   auto same = Optimize(problem, o, made_loose);
   ASSERT_TRUE(same.ok());
   EXPECT_EQ(same->points, r->points);
 
-  OptimizerOptions untouched = o;
-  untouched.engine_tolerance = 0.0;
-  FastEngine tight(2);
-  auto t = Optimize(problem, untouched, tight);
+  // Asked for the full accuracy on the loosened engine: back to width 12,
+  // and the same path in other rounding (the sets differ, the losses hardly).
+  OptimizerOptions full = o;
+  full.engine_tolerance = FastEngine::kDefaultTolerance;
+  auto t = Optimize(problem, full, engine);
   ASSERT_TRUE(t.ok());
-  EXPECT_EQ(tight.kernel_width(), FastEngine(1).kernel_width());
-  // Same path, other rounding: the sets differ, their losses hardly.
+  EXPECT_EQ(engine.kernel_width(), FastEngine(1).kernel_width());
   EXPECT_NE(t->points, r->points);
   EXPECT_NEAR(t->final_loss.total, r->final_loss.total, 1e-3 * r->final_loss.total);
 }
