@@ -156,10 +156,10 @@ int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
 // N = 1024 and 4096 (θ = 30° and 82°, 2 seeds) the runs at 1e-8 (kernel
 // width 9 instead of 12) follow the same path as at 1e-11, the same final
 // losses to four digits and the same reverts, and the run takes about 17%
-// less time at N = 4096. Above, F's absolute error (~ tolerance N) nears the lowest
-// frequencies' own size, and at 16384 and 65536 the looser runs took other
-// paths (the Gaussian 2.6x and 6.5x worse, one seed; README, "Choices: the
-// low-frequency floor").
+// less time at N = 4096. Above, F's absolute error (~ tolerance N) nears the
+// lowest frequencies' own size, and at 16384 and 65536 the looser runs took
+// other paths (the Gaussian 2.6x and 6.5x worse, one seed; README,
+// "Choices: the low-frequency floor").
 double DefaultEngineTolerance(uint32_t n);
 
 // The tolerance `options` selects for N points.

@@ -27,13 +27,9 @@ void FastEngine::SetTolerance(double tolerance) {
   // The kernel is a function of its width alone (beta = 2.30 width).
   if (kernel.width() == kernel_.width()) return;
   kernel_ = std::move(kernel);
-  // The grids hold the kernel's Fourier transform and width: rebuild them
-  // for the same K, keeping the loss weights.
-  if (k_.empty()) return;
-  std::vector<double> weights = std::move(weights_);
-  const std::vector<Frequency> k = k_;
-  SetFrequencies(k);
-  weights_ = std::move(weights);
+  // The grids hold the kernel's Fourier transform and width; K and the
+  // weights stay.
+  BuildGrids();
 }
 
 void FastEngine::SetLossWeights(std::vector<double> weights) { weights_ = std::move(weights); }
@@ -41,6 +37,10 @@ void FastEngine::SetLossWeights(std::vector<double> weights) { weights_ = std::m
 void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
   k_ = k;
   weights_.clear();
+  BuildGrids();
+}
+
+void FastEngine::BuildGrids() {
   grids_.clear();
   grid_of_.assign(k_.size(), 0);
   w1_of_.assign(k_.size(), 0);
@@ -50,7 +50,7 @@ void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
   // pass) plus 2 w kernel values per point, against the FFTs and the grid
   // sweeps. N is not known before Evaluate; |K| ~ N for the sets alignset
   // builds.
-  const double n_proxy = static_cast<double>(std::max<size_t>(k.size(), 16));
+  const double n_proxy = static_cast<double>(std::max<size_t>(k_.size(), 16));
   const double w = kernel_.width();
   const double per_piece = n_proxy * (3.0 * w * w + 20.0 * w);
   const EsKernel& kernel = kernel_;

@@ -36,9 +36,9 @@ namespace alignset {
 // gives a gradient error of 6e-6, 1e-11 gives 9e-8. Hence the default
 // 1e-11 (kernel width 12) for analyses; the optimizer, which needs only a
 // descent direction, asks for 1e-8 (width 9) up to N = 4096 through
-// SetTolerance (DefaultEngineTolerance in core/optimize/optimizer.h). Results do not depend on the thread count. Exactly
-// `threads` threads do the work (FFTW runs single-threaded, one grid per
-// thread).
+// SetTolerance (DefaultEngineTolerance in core/optimize/optimizer.h).
+// Results do not depend on the thread count. Exactly `threads` threads do
+// the work (FFTW runs single-threaded, one grid per thread).
 class FastEngine final : public SpectralEngine {
  public:
   static constexpr double kDefaultTolerance = 1e-11;
@@ -76,6 +76,8 @@ class FastEngine final : public SpectralEngine {
   // the kernel weights for a type-2 pass when they fit and `keep_allowed`.
   void TypeOne(const PointSet& points, const double* strengths, bool keep_allowed,
                std::vector<std::complex<double>>* spectrum);
+  // Partitions K into pieces and makes their grids for the current kernel.
+  void BuildGrids();
   // Runs fn(job, worker) for jobs [0, weights.size()), each worker taking a
   // contiguous run of jobs of about equal total weight.
   void RunBalanced(const std::vector<size_t>& weights, const std::function<void(size_t, int)>& fn);
