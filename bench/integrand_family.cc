@@ -377,14 +377,15 @@ int Run(const Options& o) {
         std::printf("  %-16s %12.4e %12.4e %8.3f", family[m].name.c_str(), aligned[m], owen,
                     ratio);
         if (o.exact && family[m].parts.size() == 1) {
+          const IntegrandEnergy energy = ComputeIntegrandEnergy(256, *family[m].parts[0]);
           double ea = 0.0, tail = 0.0, eo = 0.0;
           for (const DiskSpectrum& sp : spectra_aligned) {
-            const ExactVariance e = ExactCpVariance(sp, *family[m].parts[0]);
+            const ExactVariance e = ExactCpVariance(sp, energy);
             ea += e.variance / spectra_aligned.size();
             tail += e.tail_estimate / spectra_aligned.size();
           }
           for (const DiskSpectrum& sp : spectra_owen) {
-            eo += ExactCpVariance(sp, *family[m].parts[0]).variance / spectra_owen.size();
+            eo += ExactCpVariance(sp, energy).variance / spectra_owen.size();
           }
           std::printf("   %12.4e %12.4e %5.1f", ea, eo, 100.0 * tail / ea);
         }

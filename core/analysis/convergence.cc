@@ -42,10 +42,10 @@ VarianceEstimate CpVarianceOverSets(const std::vector<PointSet>& sets, const Int
 
 VarianceEstimate ExactCpVarianceOverSets(const std::vector<PointSet>& sets, const Integrand& f,
                                          int radius, SpectralEngine& engine) {
+  const IntegrandEnergy energy = ComputeIntegrandEnergy(radius, f);
   std::vector<double> per_set;
   for (const PointSet& s : sets) {
-    const DiskSpectrum spectrum = ComputeDiskSpectrum(s, radius, engine);
-    per_set.push_back(ExactCpVariance(spectrum, f).variance);
+    per_set.push_back(ExactCpVariance(ComputeDiskSpectrum(s, radius, engine), energy).variance);
   }
   return MeanOf(per_set);
 }

@@ -45,4 +45,18 @@ struct ExactVariance {
 };
 ExactVariance ExactCpVariance(const DiskSpectrum& spectrum, const Integrand& f);
 
+// The part of that sum that depends on the integrand alone, |f^(v)|^2 over
+// the half disk of a radius (DiskSpectrum's frequencies, in its order), and
+// f's variance: computed once for any number of sets, where f^ is the
+// costly side (a polygon's coefficients against one NUFFT per set).
+struct IntegrandEnergy {
+  int radius = 0;
+  std::vector<double> energy;  // |f^(v)|^2
+  double energy_sum = 0.0;     // sum of `energy`
+  double variance = 0.0;       // integral f^2 - (integral f)^2
+};
+IntegrandEnergy ComputeIntegrandEnergy(int radius, const Integrand& f);
+// The same variance from a precomputed energy of the spectrum's radius.
+ExactVariance ExactCpVariance(const DiskSpectrum& spectrum, const IntegrandEnergy& f);
+
 }  // namespace alignset
