@@ -231,7 +231,7 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
-    << fp.radius << ";tol=" << p.engine_tolerance << ";v=4";
+    << fp.radius << ";tol=" << p.engine_tolerance << ";v=5";
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
   char hex[17];

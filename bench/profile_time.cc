@@ -1,4 +1,4 @@
-// End-to-end optimization time of alignset's profile (algorithm version 4)
+// End-to-end optimization time of alignset's profile (algorithm version 5)
 // against the one before the low-frequency levers (version 2: the
 // supplement's flat loss and K, at the engine's full accuracy), measured in
 // the same run: for each N the two are run `--reps` times in alternating

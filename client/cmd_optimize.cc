@@ -36,7 +36,7 @@ struct OptimizeOptions {
   std::string revert_on = "spectrum";
   // s in L = s L_Spec + c L_SW (core/spectral/scaled_loss_engine.h).
   double spectrum_weight = 1.0;
-  // "current" (algorithm version 4) or "supplement" (the paper's flat loss
+  // "current" (algorithm version 5) or "supplement" (the paper's flat loss
   // and K, alignset's version 2), for comparisons.
   std::string profile = "current";
 };
@@ -236,7 +236,7 @@ void AddOptimizeCommand(CLI::App& app) {
       ->check(FiniteNumber())
       ->group(tuning);
   c->add_option("--engine-tolerance", o->engine_tolerance,
-                "accuracy asked of the engine during the descent (0: current 1e-8 up to "
+                "accuracy asked of the engine during the descent (0: current 1e-7 up to "
                 "N = 4096 and 1e-11 above; supplement 1e-11)")
       ->check(FiniteIn(0.0, 1e-2))
       ->group(tuning);

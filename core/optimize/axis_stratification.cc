@@ -7,58 +7,75 @@
 namespace alignset {
 namespace {
 
-// Sorts `order` by (coordinate, index), starting with an insertion sort that
+// Sorts `keyed` by (coordinate, index), starting with an insertion sort that
 // costs O(N + inversions) on a nearly sorted order and falling back to
-// std::sort once it has moved more than a few N elements.
-template <typename Coordinate>
-void WarmSort(const PointSet& p, Coordinate coord, std::vector<uint32_t>* order) {
-  std::vector<uint32_t>& o = *order;
-  if (o.size() != p.size()) {
-    o.resize(p.size());
-    std::iota(o.begin(), o.end(), 0u);
-  }
-  auto less = [&](uint32_t a, uint32_t b) {
-    const double ca = coord(p[a]), cb = coord(p[b]);
-    return ca != cb ? ca < cb : a < b;
-  };
+// std::sort once it has moved more than a few N elements. The keys sit next
+// to each other (not behind the point indices), so the nearly sorted pass
+// streams through memory even at N = 65536.
+void WarmSort(std::vector<std::pair<double, uint32_t>>* keyed) {
+  std::vector<std::pair<double, uint32_t>>& o = *keyed;
   const size_t budget = 8 * o.size() + 64;
   size_t moved = 0;
   for (size_t i = 1; i < o.size(); ++i) {
-    const uint32_t v = o[i];
+    const std::pair<double, uint32_t> v = o[i];
     size_t j = i;
-    while (j > 0 && less(v, o[j - 1])) {
+    while (j > 0 && v < o[j - 1]) {
       o[j] = o[j - 1];
       --j;
     }
     o[j] = v;
     moved += i - j;
     if (moved > budget) {
-      std::sort(o.begin(), o.end(), less);
+      std::sort(o.begin(), o.end());
       return;
     }
   }
 }
 
 template <typename Coordinate>
-void ClampRanks(PointSet* points, Coordinate coord, double margin, std::vector<uint32_t>* order) {
-  WarmSort(*points, [&](const Point2& q) { return coord(const_cast<Point2&>(q)); }, order);
-  const double n = static_cast<double>(points->size());
-  for (size_t r = 0; r < order->size(); ++r) {
-    double& c = coord((*points)[(*order)[r]]);
-    // Bounds whose stratum, floor(c N), is r in floating point too.
-    double lo = (static_cast<double>(r) + margin) / n;
-    while (std::floor(lo * n) < static_cast<double>(r)) lo = std::nextafter(lo, 1.0);
-    double hi = std::nextafter((static_cast<double>(r + 1) - margin) / n, 0.0);
-    while (std::floor(hi * n) > static_cast<double>(r)) hi = std::nextafter(hi, 0.0);
-    c = std::clamp(c, lo, hi);
+void ClampRanks(PointSet* points, Coordinate coord, const std::vector<double>& lo,
+                const std::vector<double>& hi, std::vector<uint32_t>* order,
+                std::vector<std::pair<double, uint32_t>>* keyed) {
+  PointSet& p = *points;
+  const size_t n = p.size();
+  if (order->size() != n) {
+    order->resize(n);
+    std::iota(order->begin(), order->end(), 0u);
+  }
+  keyed->resize(n);
+  // Starting from the previous call's order (nearly sorted between steps).
+  for (size_t r = 0; r < n; ++r) (*keyed)[r] = {coord(p[(*order)[r]]), (*order)[r]};
+  WarmSort(keyed);
+  for (size_t r = 0; r < n; ++r) {
+    const uint32_t i = (*keyed)[r].second;
+    (*order)[r] = i;
+    coord(p[i]) = std::clamp((*keyed)[r].first, lo[r], hi[r]);
   }
 }
 
 }  // namespace
 
 void AxisStratification::Apply(PointSet* points, double margin) {
-  ClampRanks(points, [](Point2& q) -> double& { return q.x; }, margin, &order_x_);
-  ClampRanks(points, [](Point2& q) -> double& { return q.y; }, margin, &order_y_);
+  const size_t n = points->size();
+  if (lo_.size() != n || margin != bounds_margin_) {
+    // Bounds of stratum r whose floor(c N) is r in floating point too; the
+    // same for every step, so computed once.
+    lo_.resize(n);
+    hi_.resize(n);
+    const double dn = static_cast<double>(n);
+    for (size_t r = 0; r < n; ++r) {
+      const double dr = static_cast<double>(r);
+      double lo = (dr + margin) / dn;
+      while (std::floor(lo * dn) < dr) lo = std::nextafter(lo, 1.0);
+      double hi = std::nextafter((dr + 1.0 - margin) / dn, 0.0);
+      while (std::floor(hi * dn) > dr) hi = std::nextafter(hi, 0.0);
+      lo_[r] = lo;
+      hi_[r] = hi;
+    }
+    bounds_margin_ = margin;
+  }
+  ClampRanks(points, [](Point2& q) -> double& { return q.x; }, lo_, hi_, &order_x_, &keyed_);
+  ClampRanks(points, [](Point2& q) -> double& { return q.y; }, lo_, hi_, &order_y_, &keyed_);
 }
 
 size_t EmptyAxisStrata(const PointSet& points) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/util/point_set.h"
@@ -29,6 +30,10 @@ class AxisStratification {
  private:
   // Sorts from the previous call's order (nearly sorted between steps).
   std::vector<uint32_t> order_x_, order_y_;
+  std::vector<std::pair<double, uint32_t>> keyed_;
+  // The strata's clamp bounds for the last N and margin.
+  std::vector<double> lo_, hi_;
+  double bounds_margin_ = -1.0;
 };
 
 // The number of empty columns plus empty rows of width 1/N (0 for a

@@ -124,7 +124,7 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions) {
 }
 
 double DefaultEngineTolerance(uint32_t n) {
-  return n <= 4096 ? 1e-8 : FastEngine::kDefaultTolerance;
+  return n <= 4096 ? 1e-7 : FastEngine::kDefaultTolerance;
 }
 
 double EffectiveEngineTolerance(const OptimizerOptions& options, uint32_t n) {

@@ -151,15 +151,19 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
                            int arbitrary_directions = 1);
 
-// The engine accuracy alignset's descent asks for: 1e-8 up to N = 4096, the
+// The engine accuracy alignset's descent asks for: 1e-7 up to N = 4096, the
 // fast engine's full 1e-11 above. A descent needs less than an analysis: at
 // N = 1024 and 4096 (θ = 30° and 82°, 2 seeds) the runs at 1e-8 (kernel
 // width 9 instead of 12) follow the same path as at 1e-11, the same final
-// losses to four digits and the same reverts, and the run takes about 17%
-// less time at N = 4096. Above, F's absolute error (~ tolerance N) nears the
-// lowest frequencies' own size, and at 16384 and 65536 the looser runs took
-// other paths (the Gaussian 2.6x and 6.5x worse, one seed; README,
-// "Choices: the low-frequency floor").
+// losses to four digits and the same reverts (algorithm version 4); at 1e-7
+// (width 8, two full AVX2 vectors per kernel row instead of three partly
+// empty ones) the whole integrand family at N = 256...4096, 5 angles, 4
+// seeds is version 4's within seed noise (every member's mean ratio within
+// 0.4%, single cells -4%...+8% at 4096 and identical below), and a run at
+// N = 4096 takes about 20% less time than at 1e-8. Above 4096, F's absolute
+// error (~ tolerance N) nears the lowest frequencies' own size, and at 16384
+// and 65536 the runs at 1e-8 already took other paths (the Gaussian 2.6x and
+// 6.5x worse, one seed; README, "Choices: the low-frequency floor").
 double DefaultEngineTolerance(uint32_t n);
 
 // The tolerance `options` selects for N points.

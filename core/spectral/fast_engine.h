@@ -35,7 +35,7 @@ namespace alignset {
 // grows: at N = 256 after 1000 iterations (L_Spec 1e-4) tolerance 1e-9
 // gives a gradient error of 6e-6, 1e-11 gives 9e-8. Hence the default
 // 1e-11 (kernel width 12) for analyses; the optimizer, which needs only a
-// descent direction, asks for 1e-8 (width 9) up to N = 4096 through
+// descent direction, asks for 1e-7 (width 8) up to N = 4096 through
 // SetTolerance (DefaultEngineTolerance in core/optimize/optimizer.h).
 // Results do not depend on the thread count. Exactly `threads` threads do
 // the work (FFTW runs single-threaded, one grid per thread).

@@ -36,7 +36,7 @@ struct FrequencyParams {
 // scales with N) and radius never below 1.5.
 FrequencyParams SupplementFrequencyParams(uint32_t n);
 
-// The parameters alignset uses (algorithm versions 3 and 4): the supplement's, with
+// The parameters alignset uses (algorithm versions 3 to 5): the supplement's, with
 // strips 1.5x as wide and a disk 1.6x the radius. With the weighted loss the
 // lowest frequencies are pushed towards zero; a wider disk then darkens the
 // isotropic low band (disk and triangle integrands, θ + 45° edges: 0.94 ->
