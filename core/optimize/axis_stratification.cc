@@ -78,6 +78,19 @@ void AxisStratification::Apply(PointSet* points, double margin) {
   ClampRanks(points, [](Point2& q) -> double& { return q.y; }, lo_, hi_, &order_y_, &keyed_);
 }
 
+void AxisStratification::ReleaseScratch() {
+  // Moved-from empties free their memory (assigning {} would keep it).
+  keyed_ = std::vector<std::pair<double, uint32_t>>();
+  lo_ = std::vector<double>();
+  hi_ = std::vector<double>();
+  bounds_margin_ = -1.0;
+}
+
+size_t AxisStratification::HeldBytes() const {
+  return (order_x_.capacity() + order_y_.capacity()) * sizeof(uint32_t) +
+         keyed_.capacity() * sizeof(keyed_[0]) + (lo_.capacity() + hi_.capacity()) * sizeof(double);
+}
+
 size_t EmptyAxisStrata(const PointSet& points) {
   const size_t n = points.size();
   std::vector<char> column(n, 0), row(n, 0);

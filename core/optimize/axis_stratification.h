@@ -27,8 +27,15 @@ class AxisStratification {
   // [(r + m)/N, (r + 1 - m)/N) instead, the central part of each stratum.
   void Apply(PointSet* points, double margin = 0.0);
 
+  // Releases what every Apply rebuilds (the sort keys, the strata bounds),
+  // for a run that is paused; the orders stay, so the next sort is warm.
+  void ReleaseScratch();
+  // What it holds between calls, in bytes.
+  size_t HeldBytes() const;
+
  private:
-  // Sorts from the previous call's order (nearly sorted between steps).
+  // Sorts from the previous call's order (nearly sorted between steps). The
+  // orders are the state; keyed_ is scratch, the keys of one axis at a time.
   std::vector<uint32_t> order_x_, order_y_;
   std::vector<std::pair<double, uint32_t>> keyed_;
   // The strata's clamp bounds for the last N and margin.

@@ -312,7 +312,7 @@ size_t OptimizerRun::HeldBytes() const {
   size_t weights = 0;
   for (const State::Phase& p : s.phases) weights += p.weights.capacity();
   return points * sizeof(Point2) + s.k.capacity() * sizeof(Frequency) +
-         weights * sizeof(double) + 2 * s.problem.n * sizeof(uint32_t) +  // the clamp's orders
+         weights * sizeof(double) + s.stratification.HeldBytes() +
          s.scratch.spectrum.capacity() * sizeof(std::complex<double>) +
          (s.sw ? s.sw->directions().size() * s.problem.n * (sizeof(double) + sizeof(uint32_t)) : 0);
 }
@@ -442,6 +442,7 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
           trial = AdamState();
           s.scratch = SpectrumEvaluation();
           s.sw_grad = std::vector<Point2>();
+          s.stratification.ReleaseScratch();
           return Outcome::kPaused;
         }
       }

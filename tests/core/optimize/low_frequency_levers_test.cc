@@ -90,6 +90,26 @@ TEST(AxisStratification, EveryColumnAndRowHoldsOnePointAndOrderIsKept) {
   EXPECT_EQ(copy, sobol);
 }
 
+TEST(AxisStratification, ReleasingTheScratchKeepsTheOrdersAndTheResults) {
+  // A paused run holds only the two orders (what OptimizerRun::HeldBytes
+  // counts); the keys and bounds come back on the next Apply, with the same
+  // clamped set as an object that never released them.
+  PointSet a = Random(300, 5), b = a;
+  AxisStratification kept, released;
+  kept.Apply(&a);
+  released.Apply(&b);
+  EXPECT_GT(released.HeldBytes(), 2 * 300 * sizeof(uint32_t));
+  released.ReleaseScratch();
+  EXPECT_EQ(released.HeldBytes(), 2 * 300 * sizeof(uint32_t));
+  for (PointSet* p : {&a, &b}) {
+    for (Point2& q : *p) q.x = std::fmod(q.x + 0.3 / 300, 1.0);
+  }
+  kept.Apply(&a);
+  released.Apply(&b);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(EmptyAxisStrata(b), 0u);
+}
+
 TEST(LowFrequencyProjection, ZeroesTheLowFrequenciesWithASmallMove) {
   const uint32_t n = 1024;
   PointSet p = Random(n, 5);
