@@ -29,8 +29,8 @@ void AddPrecomputeCommand(CLI::App& app);
 void AddStatsCommand(CLI::App& app);
 #endif
 #ifdef ALIGNSET_HAVE_RENDER
-// `alignset render`: defined in bench/render/cmd_render.cc, linked in by
-// bench/render/CMakeLists.txt when the renderer is built.
+// `alignset render` (client/cmd_render.cc, on the renderer library render/):
+// built with the client library.
 void AddRenderCommand(CLI::App& app);
 #endif
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "bench/render/npy.h"
-#include "bench/render/scene.h"
+#include "render/npy.h"
+#include "render/scene.h"
 
 int main(int argc, char** argv) {
   using namespace alignset::render;

@@ -40,13 +40,13 @@
 #include <string>
 #include <vector>
 
-#include "bench/render/direction.h"
-#include "bench/render/npy.h"
-#include "bench/render/pixel_samplers.h"
-#include "bench/render/renderer.h"
-#include "bench/render/scene.h"
-#include "bench/render/set_fetch.h"
-#include "bench/render/spectral_estimator.h"
+#include "render/direction.h"
+#include "render/npy.h"
+#include "render/pixel_samplers.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/set_fetch.h"
+#include "render/spectral_estimator.h"
 #include "client/progress.h"
 #include <alignset/client.h>
 #include "core/sampling/screen_space_rank1.h"

@@ -5,13 +5,13 @@
 
 #include <cmath>
 
-#include "bench/render/direction.h"
-#include "bench/render/npy.h"
-#include "bench/render/pixel_samplers.h"
-#include "bench/render/renderer.h"
-#include "bench/render/scene.h"
-#include "bench/render/set_fetch.h"
-#include "bench/render/spectral_estimator.h"
+#include "render/direction.h"
+#include "render/npy.h"
+#include "render/pixel_samplers.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/set_fetch.h"
+#include "render/spectral_estimator.h"
 #include "core/util/hash.h"
 #include <alignset/client.h>
 #include "tests/e2e/server_process.h"

@@ -1,13 +1,22 @@
 #!/usr/bin/env python3
 """Checks that #include arrows point one way (README, "Layout").
 
-Every quoted include of the form "folder/..." in a source file is looked up in
-ALLOWED: a file in core/<idea>/ may include only the core folders listed for
-<idea>, and a top-level folder only the folders listed for it. ALLOWED itself
-must be acyclic, so no folder can include from a folder that depends on it.
+Every include of a project header is mapped to the node that owns it and
+looked up in ALLOWED:
+  - a quoted include "folder/..." belongs to the top-level folder;
+  - the generated headers of proto/ ("alignset/v1/...", "grpc/...", quoted or
+    in angle brackets) belong to "proto";
+  - the public API of the client library, <alignset/X.h> (the headers in
+    client/include/alignset/ and the core headers installed beside them),
+    is its own node, "alignset-public": a renderer may include the public
+    API without depending on the client's internals.
+A file in core/<idea>/ may include only the core folders listed for <idea>,
+and a top-level folder only the nodes listed for it. Every top-level folder
+that holds sources must have an entry, and ALLOWED itself must be acyclic,
+so no folder can include from a folder that depends on it.
 
   include_direction.py [ROOT]        check the tree at ROOT (default: repo root)
-  include_direction.py --self-test   check that a planted bad include is caught
+  include_direction.py --self-test   check that planted bad includes are caught
 
 Exit status: 0 clean, 1 violations (one line each), 2 usage.
 """
@@ -26,17 +35,65 @@ CORE_ALLOWED = {
     "optimize": ["util", "sampling", "spectral", "analysis"],
 }
 
-# top-level folder -> the other top-level include roots it may use (itself
-# always allowed). "alignset" and "grpc" are the generated headers of proto/.
+PUBLIC = "alignset-public"
+PRODUCT = ["proto", "core", "storage", "server", "client", "render", PUBLIC]
+
+# node -> the other nodes it may include (itself always allowed). Top-level
+# folders are nodes; so are the public API (PUBLIC) and the generated proto
+# headers ("proto"). bench/ and tests/ may use every product folder, but no
+# product folder may include them.
 TOP_ALLOWED = {
+    "proto": [],
     "core": [],
     "storage": ["core"],
-    "server": ["core", "storage", "alignset", "grpc"],
-    "client": ["core", "storage", "alignset", "grpc"],
+    "server": ["core", "storage", "proto"],
+    # The installed headers: client.h, pixel_sampler.h, ... and core's
+    # status.h, point_set.h, directions.h (installed under <alignset/>).
+    PUBLIC: ["core"],
+    # The renderer uses the public API as a user's renderer would: never the
+    # client's internals, the server or storage.
+    "render": ["core", PUBLIC],
+    # The client library and the command line (`alignset render` runs render/).
+    "client": ["core", "storage", "proto", "render", PUBLIC],
+    "bench": PRODUCT,
+    "tests": PRODUCT + ["bench"],
+    "deploy": ["proto"],
+    "scripts": [],
 }
 
+# Top-level folders that hold no C++ of the project.
+NOT_SOURCE = {"build", "docs", "shared"}
+
 SOURCE_EXT = (".h", ".cc", ".cu", ".cuh")
-INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([A-Za-z0-9_]+)/([^"]*)"')
+QUOTED_RE = re.compile(r'^\s*#\s*include\s+"([A-Za-z0-9_.-]+)/([^"]*)"')
+ANGLE_RE = re.compile(r'^\s*#\s*include\s+<(alignset)/([^>]*)>')
+
+
+def owner_of_file(rel):
+    """The node a source file belongs to."""
+    parts = rel.split(os.sep)
+    if parts[:3] == ["client", "include", "alignset"]:
+        return PUBLIC
+    return parts[0]
+
+
+def owner_of_include(first, rest, quoted, top_dirs):
+    """The node an include names, or None for a header outside the project."""
+    if first == "alignset":
+        return "proto" if rest.startswith("v1/") else PUBLIC
+    if first == "grpc":
+        # "grpc/health/v1/..." is generated from proto/; <grpc/...> is gRPC's own.
+        return "proto" if quoted else None
+    if quoted and (first in TOP_ALLOWED or first in top_dirs):
+        return first
+    return None
+
+
+def has_sources(path):
+    for _, _, files in os.walk(path):
+        if any(f.endswith(SOURCE_EXT) for f in files):
+            return True
+    return False
 
 
 def check_acyclic(graph):
@@ -68,17 +125,24 @@ def scan(root):
         cycle = check_acyclic(graph)
         if cycle:
             errors.append("ALLOWED table for %s has a cycle: %s" % (name, " -> ".join(cycle)))
-    for top in TOP_ALLOWED:
+    top_dirs = sorted(d for d in os.listdir(root)
+                      if os.path.isdir(os.path.join(root, d)) and not d.startswith(".")
+                      and d not in NOT_SOURCE)
+    for top in top_dirs:
         top_dir = os.path.join(root, top)
-        if not os.path.isdir(top_dir):
+        if top not in TOP_ALLOWED:
+            if has_sources(top_dir):
+                errors.append("%s/: top-level folder '%s' holds sources but has no entry in the "
+                              "layout table" % (top, top))
             continue
         for dirpath, _, files in os.walk(top_dir):
-            for f in files:
+            for f in sorted(files):
                 if not f.endswith(SOURCE_EXT):
                     continue
                 path = os.path.join(dirpath, f)
                 rel = os.path.relpath(path, root)
                 parts = rel.split(os.sep)
+                node = owner_of_file(rel)
                 idea = parts[1] if top == "core" and len(parts) > 2 else None
                 if top == "core" and idea is None:
                     errors.append("%s: a core source outside every idea folder" % rel)
@@ -88,15 +152,26 @@ def scan(root):
                     continue
                 with open(path, encoding="utf-8", errors="replace") as fh:
                     for lineno, line in enumerate(fh, 1):
-                        m = INCLUDE_RE.match(line)
+                        m = QUOTED_RE.match(line)
+                        quoted = m is not None
+                        if not m:
+                            m = ANGLE_RE.match(line)
                         if not m:
                             continue
-                        inc_top, inc_rest = m.group(1), m.group(2)
-                        where = "%s:%d" % (rel, lineno)
-                        if inc_top != top and inc_top not in TOP_ALLOWED[top]:
-                            errors.append('%s: %s/ may not include "%s/%s"' % (where, top, inc_top, inc_rest))
+                        inc_first, inc_rest = m.group(1), m.group(2)
+                        inc_node = owner_of_include(inc_first, inc_rest, quoted, top_dirs)
+                        if inc_node is None:
                             continue
-                        if idea is not None and inc_top == "core":
+                        where = "%s:%d" % (rel, lineno)
+                        shown = ('"%s/%s"' if quoted else "<%s/%s>") % (inc_first, inc_rest)
+                        if inc_node not in TOP_ALLOWED:
+                            errors.append("%s: %s names folder '%s', which has no entry in the "
+                                          "layout table" % (where, shown, inc_node))
+                            continue
+                        if inc_node != node and inc_node not in TOP_ALLOWED[node]:
+                            errors.append("%s: %s may not include %s" % (where, node, shown))
+                            continue
+                        if idea is not None and inc_node == "core":
                             inc_idea = inc_rest.split("/", 1)[0]
                             if "/" not in inc_rest:
                                 errors.append('%s: "core/%s" names no idea folder' % (where, inc_rest))
@@ -114,6 +189,10 @@ def self_test():
                 fh.write(text)
         write("core/util/status.h", "#pragma once\n")
         write("core/spectral/engine.h", '#include "core/util/status.h"\n')
+        write("render/scene.h", '#include "core/util/status.h"\n#include <alignset/client.h>\n')
+        write("client/include/alignset/client.h", "#include <alignset/status.h>\n")
+        write("client/cmd_render.cc", '#include "render/scene.h"\n#include "client/progress.h"\n')
+        write("bench/render/main.cc", '#include "render/scene.h"\n#include "server/service.h"\n')
         if scan(tmp):
             print("self-test: a clean tree was flagged: %s" % scan(tmp))
             return 1
@@ -123,11 +202,22 @@ def self_test():
             "core/sampling/bad.cc": '#include "storage/set_cache.h"\n',       # core -> storage
             "storage/bad.cc": '#include "server/service.h"\n',              # storage -> server
             "core/loose.h": "#pragma once\n",                                # outside an idea folder
+            "render/bad_server.cc": '#include "server/service.h"\n',        # render -> server
+            "render/bad_storage.cc": '#include "storage/set_cache.h"\n',    # render -> storage
+            "render/bad_client.cc": '#include "client/service_client.h"\n', # render -> client internals
+            "render/bad_proto.h": "#include <alignset/v1/alignset.pb.h>\n",  # render -> generated proto
+            "core/util/bad_render.h": '#include "render/scene.h"\n',        # core -> render
+            "client/include/alignset/bad.h": '#include "client/progress.h"\n',  # public API -> internals
+            "server/bad_bench.cc": '#include "bench/render/x.h"\n',         # product -> bench
+            "client/bad_tests.cc": '#include "tests/client/cli_runner.h"\n',  # product -> tests
+            "newfolder/x.cc": "",                                            # a folder without an entry
         }
         for rel, text in planted.items():
             write(rel, text)
         errors = scan(tmp)
-        missed = [rel for rel in planted if not any(e.startswith(rel) for e in errors)]
+        def caught(rel):  # a line for the file, or for its folder ("newfolder/: ...")
+            return any(e.startswith(rel) or e.startswith(rel.split("/", 1)[0] + "/:") for e in errors)
+        missed = [rel for rel in planted if not caught(rel)]
         if missed:
             print("self-test: planted violations not caught: %s" % ", ".join(missed))
             return 1

@@ -1,10 +1,10 @@
-#include "bench/render/geometry.h"
+#include "render/geometry.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "bench/render/pixel_integrand.h"
+#include "render/pixel_integrand.h"
 #include "core/util/hash.h"
 
 namespace alignset::render {

@@ -7,10 +7,10 @@
 #include <filesystem>
 #include <string>
 
-#include "bench/render/npy.h"
-#include "bench/render/pixel_samplers.h"
-#include "bench/render/renderer.h"
-#include "bench/render/scene.h"
+#include "render/npy.h"
+#include "render/pixel_samplers.h"
+#include "render/renderer.h"
+#include "render/scene.h"
 #include "tests/client/cli_runner.h"
 
 namespace alignset::render {

@@ -1,16 +1,16 @@
 // Every sampler of the renderer on a few pixels of both scenes at low N: each
 // estimate, over independent replicates (render seeds), must agree with the
 // exact reference within its own statistical bound. No golden images.
-#include "bench/render/pixel_samplers.h"
+#include "render/pixel_samplers.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "bench/render/direction.h"
-#include "bench/render/renderer.h"
-#include "bench/render/scene.h"
-#include "bench/render/spectral_estimator.h"
+#include "render/direction.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/spectral_estimator.h"
 #include "core/sampling/samplers.h"
 #include "core/util/hash.h"
 

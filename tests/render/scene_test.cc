@@ -1,12 +1,12 @@
-#include "bench/render/scene.h"
+#include "render/scene.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "bench/render/direction.h"
-#include "bench/render/parallel.h"
+#include "render/direction.h"
+#include "render/parallel.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/util/hash.h"
 

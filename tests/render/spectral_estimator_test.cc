@@ -1,6 +1,6 @@
 // The renderer's front end: core/analysis's direction estimator on a
 // pixel's pre-pass, against the direction the scene's geometry gives.
-#include "bench/render/spectral_estimator.h"
+#include "render/spectral_estimator.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/render/scene.h"
+#include "render/scene.h"
 #include "core/util/hash.h"
 
 namespace alignset::render {

@@ -1,4 +1,4 @@
-#include "bench/render/pixel_samplers.h"
+#include "render/pixel_samplers.h"
 
 #include <algorithm>
 #include <cmath>

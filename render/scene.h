@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/render/pixel_integrand.h"
+#include "render/pixel_integrand.h"
 #include "core/util/status.h"
 
 namespace alignset::render {

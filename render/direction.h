@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/render/pixel_integrand.h"
-#include "bench/render/scene.h"
+#include "render/pixel_integrand.h"
+#include "render/scene.h"
 
 namespace alignset::render {
 
@@ -47,7 +47,7 @@ class DirectionEstimator {
   virtual int64_t refusals() const { return 0; }
 };
 
-// The estimator of record is core/analysis's (bench/render/spectral_estimator.h).
+// The estimator of record is core/analysis's (render/spectral_estimator.h).
 
 std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
                                                uint64_t seed, int threads);

@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bench/render/scene.h"
+#include "render/scene.h"
 #include "core/util/angles.h"
 #include "core/util/hash.h"
 

@@ -1,9 +1,9 @@
-#include "bench/render/direction.h"
+#include "render/direction.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bench/render/parallel.h"
+#include "render/parallel.h"
 #include "core/util/angles.h"
 #include "core/util/hash.h"
 

@@ -1,8 +1,8 @@
-#include "bench/render/renderer.h"
+#include "render/renderer.h"
 
 #include <cmath>
 
-#include "bench/render/parallel.h"
+#include "render/parallel.h"
 #include "core/sampling/periodic_blur.h"
 
 namespace alignset::render {

@@ -1,4 +1,4 @@
-#include "bench/render/aligned_sets.h"
+#include "render/aligned_sets.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "bench/render/scene.h"
+#include "render/scene.h"
 
 namespace alignset::render {
 

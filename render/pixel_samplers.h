@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "bench/render/aligned_sets.h"
-#include "bench/render/direction.h"
-#include "bench/render/pixel_integrand.h"
+#include "render/aligned_sets.h"
+#include "render/direction.h"
+#include "render/pixel_integrand.h"
 #include "core/sampling/screen_space_rank1.h"
 #include "core/util/status.h"
 

@@ -1,4 +1,4 @@
-#include "bench/render/spectral_estimator.h"
+#include "render/spectral_estimator.h"
 
 #include <atomic>
 #include <cstdlib>

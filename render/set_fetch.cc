@@ -1,4 +1,4 @@
-#include "bench/render/set_fetch.h"
+#include "render/set_fetch.h"
 
 #include <algorithm>
 #include <vector>

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "bench/render/direction.h"
+#include "render/direction.h"
 #include "core/util/status.h"
 
 namespace alignset::render {
@@ -26,7 +26,7 @@ namespace alignset::render {
 // confidence (the share of the weight in the fitted lobe, here P percent):
 // below it the pixel is treated as direction-less (the first lobe's; a
 // found second lobe is kept). Measured on the scenes'
-// pixels with grid16 (bench/render, README): a pure linear gradient is
+// pixels with grid16 (render_bench, README): a pure linear gradient is
 // "found" with confidence 0.30-0.44 at an angle up to 34 degrees off its
 // gradient, clean edges have a median of 0.75.
 struct Prepass {

@@ -1,4 +1,4 @@
-#include "bench/render/pixel_integrand.h"
+#include "render/pixel_integrand.h"
 
 #include <algorithm>
 #include <cmath>

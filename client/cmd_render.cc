@@ -1,13 +1,13 @@
 // `alignset render`: one image of one scene with one sampler, as a .npy
-// array, so that anyone can compare a sampler with any tool. Compiled into
-// the `alignset` binary by bench/render/CMakeLists.txt (the renderer lives in
-// bench/render; client/main.cc only calls AddRenderCommand).
+// array, so that anyone can compare a sampler with any tool. The command
+// line around the renderer library render/ (alignset_render): built into the
+// `alignset` binary when the client library is (client/CMakeLists.txt).
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
 
-#include "bench/render/render_command.h"
+#include "render/render_command.h"
 #include "client/commands.h"
 #include "client/progress.h"
 #include "client/service_options.h"

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "bench/render/direction.h"
+#include "render/direction.h"
 #include "core/util/point_set.h"
 
 namespace alignset::render {
@@ -44,7 +44,7 @@ std::set<std::pair<int, int>> NeededPairs(const std::vector<PixelDirection>& dir
 
 // The aligned sets of one N a render reads: the 180 one-direction sets by
 // served degree, and the two-direction sets it needs by (a, b). Filled
-// before rendering (bench/render/set_fetch.h fetches them from a server);
+// before rendering (render/set_fetch.h fetches them from a server);
 // read-only while the render's threads run.
 struct AlignedSetTable {
   uint32_t n = 0;

@@ -1,4 +1,4 @@
-#include "bench/render/geometry.h"
+#include "render/geometry.h"
 
 #include <algorithm>
 

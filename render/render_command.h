@@ -4,8 +4,8 @@
 #include <functional>
 #include <string>
 
-#include "bench/render/pixel_samplers.h"
-#include "bench/render/spectral_estimator.h"
+#include "render/pixel_samplers.h"
+#include "render/spectral_estimator.h"
 #include <alignset/client.h>
 #include "core/util/status.h"
 

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "bench/render/geometry.h"
+#include "render/geometry.h"
 
 namespace alignset::render {
 

@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "bench/render/pixel_samplers.h"
-#include "bench/render/scene.h"
+#include "render/pixel_samplers.h"
+#include "render/scene.h"
 
 namespace alignset::render {
 

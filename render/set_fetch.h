@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "bench/render/aligned_sets.h"
+#include "render/aligned_sets.h"
 #include <alignset/client.h>
 
 #include "core/util/status.h"

@@ -1,4 +1,4 @@
-#include "bench/render/npy.h"
+#include "render/npy.h"
 
 #include <cerrno>
 #include <cstdint>

@@ -1,13 +1,13 @@
-#include "bench/render/render_command.h"
+#include "render/render_command.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "bench/render/direction.h"
-#include "bench/render/npy.h"
-#include "bench/render/renderer.h"
-#include "bench/render/scene.h"
-#include "bench/render/set_fetch.h"
+#include "render/direction.h"
+#include "render/npy.h"
+#include "render/renderer.h"
+#include "render/scene.h"
+#include "render/set_fetch.h"
 #include "core/sampling/samplers.h"
 #include "core/sampling/screen_space_rank1.h"
 
