@@ -6,37 +6,19 @@
 #include <utility>
 #include <vector>
 
+#include <alignset/pixel_sampler.h>
+
 #include "render/direction.h"
 #include "core/util/point_set.h"
 
 namespace alignset::render {
 
-// The direction a server serves for a requested θ: the nearest whole degree,
-// reduced mod 180 (ties away from zero), as core/align's Canonicalize does.
-int ServedDegree(double theta_deg);
-
-// What a pixel without a dominant direction gets, and whether pixels with
-// two get a two-direction (4-direction) set.
-struct AlignedPolicy {
-  enum class None { kOwenSobol, kAxisSet };
-  None none = None::kOwenSobol;
-  bool two_directions = true;
-};
-
-// The set a pixel gets, in served whole degrees.
-//  - kFallback: no dominant direction and policy kOwenSobol.
-//  - kOne(a): one direction a; also a pixel whose second direction is an
-//    axis (0 or 90 after rounding): every set already suppresses the axes,
-//    so a 4-direction set would spend its strips twice. A pixel without a
-//    dominant direction under kAxisSet gets kOne(0), the axis set.
-//  - kTwo(a, b), a < b: two distinct non-axis directions.
-struct SetChoice {
-  enum class Kind { kFallback, kOne, kTwo };
-  Kind kind = Kind::kFallback;
-  int a = 0;
-  int b = 0;
-};
-SetChoice ChooseSet(const PixelDirection& d, const AlignedPolicy& policy);
+// The set choice is the client library's per-pixel recipe
+// (<alignset/pixel_sampler.h>: AlignedPolicy, SetChoice, ChooseSet); a
+// render's direction map is turned into its PixelDirections here.
+inline PixelDirections RecipeDirections(const PixelDirection& d) {
+  return {static_cast<int>(d.kind), d.theta1, d.theta2};
+}
 
 // The pairs a direction map needs under a policy.
 std::set<std::pair<int, int>> NeededPairs(const std::vector<PixelDirection>& directions,

@@ -9,11 +9,6 @@
 
 namespace alignset::render {
 
-double AxialDistanceDeg(double a, double b) {
-  const double d = std::abs(ReduceDirection(a) - ReduceDirection(b));
-  return std::min(d, 180.0 - d);
-}
-
 PixelDirection GeometryDirection(const PixelIntegrand& f) {
   struct Group {
     double anchor;

@@ -52,7 +52,4 @@ class DirectionEstimator {
 std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
                                                uint64_t seed, int threads);
 
-// Axial distance between two directions in degrees, in [0, 90].
-double AxialDistanceDeg(double a, double b);
-
 }  // namespace alignset::render

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <alignset/pixel_shift.h>
+#include <alignset/pixel_sampler.h>
 
 #include "core/sampling/owen_sobol.h"
 #include "core/sampling/rank1_lattice.h"
@@ -122,7 +122,7 @@ class Aligned : public PixelSampler {
           AlignedPolicy policy, bool per_pixel_shift)
       : n_(n), sets_(sets), dirs_(dirs), policy_(policy), shift_(per_pixel_shift) {}
   double Estimate(const PixelIntegrand& f, const PixelTask& t) const override {
-    const SetChoice c = ChooseSet((*dirs_)[t.index], policy_);
+    const SetChoice c = ChooseSet(RecipeDirections((*dirs_)[t.index]), policy_);
     const PointSet* set = nullptr;
     if (c.kind == SetChoice::Kind::kOne) set = sets_->One(c.a);
     if (c.kind == SetChoice::Kind::kTwo) set = sets_->Two(c.a, c.b);
@@ -130,7 +130,7 @@ class Aligned : public PixelSampler {
       return Mean(f, OwenScrambledSobol(n_, PixelHash(t.seed, t.x, t.y, kSaltSet)));
     }
     if (!set) return std::nan("");  // a set the table was not filled with: shows up, never hides
-    // The client library's per-pixel recipe (<alignset/pixel_shift.h>).
+    // The client library's per-pixel recipe (<alignset/pixel_sampler.h>).
     const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
     double sum = 0.0;
     for (const Point2& p : *set) {

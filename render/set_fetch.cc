@@ -40,8 +40,9 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
   table.n = n;
   table.one.resize(180);
   std::vector<SetRequest> items;
-  for (int deg = 0; deg < 180; ++deg) items.push_back({n, {static_cast<double>(deg)}});
-  for (const auto& [a, b] : pairs) items.push_back({n, {static_cast<double>(a), static_cast<double>(b)}});
+  // The client library's key -> request mapping (<alignset/pixel_sampler.h>).
+  for (int deg = 0; deg < 180; ++deg) items.push_back(*RequestFor({SetChoice::Kind::kOne, deg, 0}, n));
+  for (const auto& [a, b] : pairs) items.push_back(*RequestFor({SetChoice::Kind::kTwo, a, b}, n));
   const std::string stage = "fetch sets N=" + std::to_string(n);
   for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
     const size_t end = std::min(items.size(), begin + kMaxBatchItems);

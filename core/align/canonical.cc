@@ -67,11 +67,8 @@ const std::vector<CanonicalDirections>& PairKeys() {
 
 constexpr int kSingleKeys = 46;
 
-// Nearest whole degree of a finite angle, reduced to [0, 180).
-int ServedDegree(double deg) {
-  const double r = std::round(ReduceDirection(deg));
-  return Mod180(static_cast<int>(r));
-}
+// ServedDegree (the nearest whole degree, reduced to [0, 180)):
+// core/util/directions.h.
 
 // Nearest grid step (`steps` per degree) of a finite angle, reduced to
 // [0, 180 steps).

@@ -7,11 +7,6 @@
 
 namespace alignset {
 
-double AxialDistance(double a, double b) {
-  double d = std::fmod(std::fabs(a - b), kPi);
-  return std::min(d, kPi - d);
-}
-
 AngularEnergy::AngularEnergy(const std::vector<Frequency>& frequencies,
                              std::vector<double> weights, double sigma)
     : weight_(std::move(weights)), sigma_(sigma) {

@@ -51,8 +51,7 @@ class AngularEnergy {
   double total_ = 0.0;
 };
 
-// Axial distance between two directions (radians), in [0, pi/2].
-double AxialDistance(double a, double b);
+// AxialDistance (radians): core/util/directions.h.
 
 // Whether v lies within `band` frequency units of the line through the
 // origin at theta: where a line's energy falls (its perpendicular spread is

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/util/directions.h"
+
 namespace alignset {
 
 // Angles are degrees everywhere outside this header. A direction θ names the
@@ -12,13 +14,7 @@ inline constexpr double kPi = std::numbers::pi;
 
 inline double DegToRad(double deg) { return deg * (kPi / 180.0); }
 
-// Reduces any finite angle to [0, 180): directions are lines, not rays.
-inline double ReduceDirection(double deg) {
-  double r = std::fmod(deg, 180.0);
-  if (r < 0.0) r += 180.0;
-  if (r >= 180.0) r -= 180.0;
-  return r;
-}
+// ReduceDirection, ServedDegree, AxialDistance(Deg): core/util/directions.h.
 
 struct Vec2 {
   double x;

@@ -2,6 +2,7 @@
 // client library:  alignset_consumer HOST:PORT
 // Exit status 0 when every check holds; otherwise one line on stderr.
 #include <alignset/client.h>
+#include <alignset/pixel_sampler.h>
 #include <alignset/pixel_shift.h>
 
 #include <cstdio>
@@ -58,6 +59,23 @@ int main(int argc, char** argv) {
   }
   if (!InUnitSquare(shifted) || alignset::PixelShift(7, 3, 4) == alignset::PixelShift(7, 4, 3)) {
     return Fail("PixelShift / ShiftPoint misbehave");
+  }
+  // The set choice of the recipe (<alignset/pixel_sampler.h>): 150.4 deg
+  // and 29.6 deg are served as 150 and 30, a pair of non-axis directions; its
+  // request is answered with that pair.
+  const alignset::SetChoice two =
+      alignset::ChooseSet({2, 150.4, 29.6 + 180.0}, alignset::AlignedPolicy{});
+  const alignset::SetChoice axis = alignset::ChooseSet({2, 40.0, 90.2}, alignset::AlignedPolicy{});
+  if (two.kind != alignset::SetChoice::Kind::kTwo || two.a != 30 || two.b != 150 ||
+      axis.kind != alignset::SetChoice::Kind::kOne || axis.a != 40 ||
+      alignset::RequestFor(alignset::SetChoice{}, 64).has_value() ||
+      alignset::ServedDegree(179.5) != 0 || alignset::AxialDistanceDeg(10.0, 170.0) != 20.0) {
+    return Fail("ChooseSet / RequestFor / ServedDegree misbehave");
+  }
+  auto pair = (*client)->GetAlignedSet(*alignset::RequestFor(two, 64), call);
+  if (!pair.ok() || pair->info.served_deg.size() != 2) {
+    return Fail("GetAlignedSet for a recipe's pair: " +
+                (pair.ok() ? std::string("wrong directions") : pair.status().ToString()));
   }
   std::printf("alignset %s client: %zu points for %d deg (key %s), batch of %zu\n",
               alignset::kClientVersion, set->points.size(), set->info.served_deg[0],

@@ -11,6 +11,7 @@
 
 #include "render/scene.h"
 #include "core/util/hash.h"
+#include "core/util/directions.h"
 
 namespace alignset::render {
 namespace {
