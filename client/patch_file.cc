@@ -10,7 +10,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "client/npy_array.h"
+#include <alignset/npy.h>
 #include "client/point_file.h"
 
 namespace alignset::cli {

@@ -12,7 +12,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "client/npy_array.h"
+#include <alignset/npy.h>
 
 namespace alignset::cli {
 namespace {
@@ -32,19 +32,6 @@ Format FormatOf(const std::string& path) {
 std::string Shape(const std::vector<size_t>& dims) { return NpyShapeText(dims); }
 
 // ------------------------------------------------------------------ write
-
-std::string NpyHeader(const std::vector<size_t>& dims) {
-  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " + Shape(dims) + ", }";
-  // magic(6) + version(2) + header_len(2) + dict + padding + '\n' is a multiple of 64.
-  const size_t total = 10 + dict.size() + 1;
-  dict.append((64 - total % 64) % 64, ' ');
-  dict.push_back('\n');
-  std::string h("\x93NUMPY\x01\x00", 8);
-  const uint16_t len = static_cast<uint16_t>(dict.size());
-  h.push_back(static_cast<char>(len & 0xff));
-  h.push_back(static_cast<char>(len >> 8));
-  return h + dict;
-}
 
 void AppendPair(std::string* out, const Point2& p, const char* format) {
   char buf[64];

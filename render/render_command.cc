@@ -3,8 +3,9 @@
 #include <chrono>
 #include <cmath>
 
+#include <alignset/npy.h>
+
 #include "render/direction.h"
-#include "render/npy.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/set_fetch.h"

@@ -3,7 +3,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "render/npy.h"
+#include <alignset/npy.h>
+
 #include "render/scene.h"
 
 int main(int argc, char** argv) {
@@ -21,8 +22,8 @@ int main(int argc, char** argv) {
   std::vector<double> classes;
   for (PixelClass c : scene->Classes()) classes.push_back(static_cast<double>(c));
   const std::string prefix = argv[5];
-  if (!WriteNpy(prefix + "_reference.npy", shape, scene->Reference()).ok() ||
-      !WriteNpy(prefix + "_classes.npy", shape, classes).ok()) {
+  if (!alignset::WriteNpy(prefix + "_reference.npy", shape, scene->Reference()).ok() ||
+      !alignset::WriteNpy(prefix + "_classes.npy", shape, classes).ok()) {
     std::fprintf(stderr, "render_reference: cannot write %s_*.npy\n", prefix.c_str());
     return 1;
   }

@@ -41,7 +41,6 @@
 #include <vector>
 
 #include "render/direction.h"
-#include "render/npy.h"
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -49,6 +48,7 @@
 #include "render/spectral_estimator.h"
 #include "client/progress.h"
 #include <alignset/client.h>
+#include <alignset/npy.h>
 #include "core/sampling/screen_space_rank1.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/util/angles.h"

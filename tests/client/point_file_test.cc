@@ -14,6 +14,8 @@
 #include <tuple>
 #include <vector>
 
+#include <alignset/npy.h>
+
 #include "client/point_file.h"
 #include "core/align/canonical.h"
 #include "core/sampling/samplers.h"
@@ -34,17 +36,11 @@ std::string Slurp(const std::string& path) {
   return ss.str();
 }
 
-// A .npy file exactly as numpy.save writes one (format 1.0).
-void WriteNpy(const std::string& path, const std::string& descr, const std::string& shape,
+// A .npy file exactly as numpy.save writes one (format 1.0): the project's
+// header (<alignset/npy.h>) for any dtype and order, then `body` as given.
+void WriteNpy(const std::string& path, const std::string& descr, const std::vector<size_t>& shape,
               bool fortran, const std::string& body) {
-  std::string dict = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") +
-                     ", 'shape': " + shape + ", }";
-  dict.append((64 - (10 + dict.size() + 1) % 64) % 64, ' ');
-  dict.push_back('\n');
-  std::string h("\x93NUMPY\x01\x00", 8);
-  h.push_back(static_cast<char>(dict.size() & 0xff));
-  h.push_back(static_cast<char>(dict.size() >> 8));
-  std::ofstream(path, std::ios::binary) << h << dict << body;
+  std::ofstream(path, std::ios::binary) << NpyHeader(shape, fortran, descr) << body;
 }
 
 std::string Doubles(const std::vector<double>& v) {
@@ -56,18 +52,18 @@ const PointSet kThree = {{0.125, 0.25}, {0.5, 0.75}, {0.875, 0.0625}};
 TEST(PointFileIn, TransposedNpyIsReadAsNPoints) {
   const std::string path = TempPath("t.npy");
   // np.array([xs, ys]): shape (2, 3), the x row first.
-  WriteNpy(path, "<f8", "(2, 3)", false, Doubles({0.125, 0.5, 0.875, 0.25, 0.75, 0.0625}));
+  WriteNpy(path, "<f8", {2, 3}, false, Doubles({0.125, 0.5, 0.875, 0.25, 0.75, 0.0625}));
   auto read = ReadPointFile(path);
   ASSERT_TRUE(read.ok()) << read.status().message();
   EXPECT_EQ(*read, kThree);
   // The same points as a Fortran-order (3, 2) array (np.asfortranarray).
-  WriteNpy(path, "<f8", "(3, 2)", true, Doubles({0.125, 0.5, 0.875, 0.25, 0.75, 0.0625}));
+  WriteNpy(path, "<f8", {3, 2}, true, Doubles({0.125, 0.5, 0.875, 0.25, 0.75, 0.0625}));
   read = ReadPointFile(path);
   ASSERT_TRUE(read.ok()) << read.status().message();
   EXPECT_EQ(*read, kThree);
   // float32 is read too.
   const float f[] = {0.125f, 0.25f, 0.5f, 0.75f, 0.875f, 0.0625f};
-  WriteNpy(path, "<f4", "(3, 2)", false, std::string(reinterpret_cast<const char*>(f), sizeof(f)));
+  WriteNpy(path, "<f4", {3, 2}, false, std::string(reinterpret_cast<const char*>(f), sizeof(f)));
   read = ReadPointFile(path);
   ASSERT_TRUE(read.ok()) << read.status().message();
   EXPECT_EQ(*read, kThree);
@@ -76,7 +72,7 @@ TEST(PointFileIn, TransposedNpyIsReadAsNPoints) {
 
 TEST(PointFileIn, FlatNpyIsAClearError) {
   const std::string path = TempPath("flat.npy");
-  WriteNpy(path, "<f8", "(6,)", false, Doubles({0.125, 0.25, 0.5, 0.75, 0.875, 0.0625}));
+  WriteNpy(path, "<f8", {6}, false, Doubles({0.125, 0.25, 0.5, 0.75, 0.875, 0.0625}));
   auto read = ReadPointFile(path);
   ASSERT_FALSE(read.ok());
   EXPECT_NE(read.status().message().find("a flat array of 6 values"), std::string::npos)
@@ -89,10 +85,10 @@ TEST(PointFileIn, FlatNpyIsAClearError) {
   EXPECT_NE(r.err.find("flat array"), std::string::npos) << r.err;
   // Other shapes, a dtype that is not a float, and a short body are refused too.
   for (const auto& [descr, shape, values] :
-       std::vector<std::tuple<std::string, std::string, size_t>>{
-           {"<f8", "(2, 3, 1)", 6}, {"<f8", "(3, 3)", 9}, {"<i8", "(3, 2)", 6}, {"<f8", "(4, 2)", 6}}) {
+       std::vector<std::tuple<std::string, std::vector<size_t>, size_t>>{
+           {"<f8", {2, 3, 1}, 6}, {"<f8", {3, 3}, 9}, {"<i8", {3, 2}, 6}, {"<f8", {4, 2}, 6}}) {
     WriteNpy(path, descr, shape, false, Doubles(std::vector<double>(values, 0.5)));
-    EXPECT_FALSE(ReadPointFile(path).ok()) << descr << " " << shape;
+    EXPECT_FALSE(ReadPointFile(path).ok()) << descr << " " << NpyShapeText(shape);
   }
   std::remove(path.c_str());
 }
@@ -130,7 +126,7 @@ TEST(PointFileIn, CoordinatesOutsideTheUnitSquareAreRefused) {
     EXPECT_NE(r.status().message().find("point 1 ("), std::string::npos) << r.status().message();
     EXPECT_NE(r.status().message().find("outside [0, 1)^2"), std::string::npos);
   }
-  WriteNpy(npy, "<f8", "(2, 2)", false, Doubles({0.1, 0.2, 1.5, 0.5}));
+  WriteNpy(npy, "<f8", {2, 2}, false, Doubles({0.1, 0.2, 1.5, 0.5}));
   auto r = ReadPointFile(npy);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.status().message().find("outside [0, 1)^2"), std::string::npos);

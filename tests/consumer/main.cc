@@ -2,11 +2,16 @@
 // client library:  alignset_consumer HOST:PORT
 // Exit status 0 when every check holds; otherwise one line on stderr.
 #include <alignset/client.h>
+#include <alignset/npy.h>
 #include <alignset/pixel_sampler.h>
 #include <alignset/pixel_shift.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace {
 
@@ -76,6 +81,18 @@ int main(int argc, char** argv) {
   if (!pair.ok() || pair->info.served_deg.size() != 2) {
     return Fail("GetAlignedSet for a recipe's pair: " +
                 (pair.ok() ? std::string("wrong directions") : pair.status().ToString()));
+  }
+  // The .npy writer and reader: the set as an (N, 2) array, back unchanged.
+  const std::string npy = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") +
+                          "/alignset_consumer_" + std::to_string(::getpid()) + ".npy";
+  std::vector<double> xy;
+  for (const alignset::Point2& p : set->points) xy.insert(xy.end(), {p.x, p.y});
+  const alignset::Status wrote = alignset::WriteNpy(npy, {set->points.size(), 2}, xy);
+  auto read = alignset::ReadNpy(npy);
+  std::remove(npy.c_str());
+  if (!wrote.ok() || !read.ok() || read->values != xy ||
+      read->shape != std::vector<size_t>{set->points.size(), 2}) {
+    return Fail("WriteNpy / ReadNpy do not round-trip a set");
   }
   std::printf("alignset %s client: %zu points for %d deg (key %s), batch of %zu\n",
               alignset::kClientVersion, set->points.size(), set->info.served_deg[0],

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "render/direction.h"
-#include "render/npy.h"
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -14,6 +13,7 @@
 #include "render/spectral_estimator.h"
 #include "core/util/hash.h"
 #include <alignset/client.h>
+#include <alignset/npy.h>
 #include "tests/e2e/server_process.h"
 
 namespace alignset::render {
@@ -121,10 +121,9 @@ TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
   const std::string space = dir.path() + "/space.npy";
   auto r = e2e::RunCommand(cli + "get --space 1dir -n 16 -q --server " + server.address() + " -o " + space);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::vector<size_t> shape;
-  auto values = ReadNpy(space, &shape);
+  auto values = ReadNpy(space);
   ASSERT_TRUE(values.ok()) << values.status().message();
-  ASSERT_EQ(shape, (std::vector<size_t>{46, 16, 2}));
+  ASSERT_EQ(values->shape, (std::vector<size_t>{46, 16, 2}));
   ConnectOptions o;
   o.address = server.address();
   auto client = ServiceClient::Connect(o);
@@ -133,8 +132,8 @@ TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
     auto set = (*client)->GetAlignedSet(16, {double(k)});
     ASSERT_TRUE(set.ok());
     for (size_t j = 0; j < 16; ++j) {
-      EXPECT_EQ((*values)[(k * 16 + j) * 2], set->points[j].x) << k;
-      EXPECT_EQ((*values)[(k * 16 + j) * 2 + 1], set->points[j].y) << k;
+      EXPECT_EQ(values->values[(k * 16 + j) * 2], set->points[j].x) << k;
+      EXPECT_EQ(values->values[(k * 16 + j) * 2 + 1], set->points[j].y) << k;
     }
   }
   // One image with the aligned sets (geometry θ) from that server.
@@ -142,12 +141,12 @@ TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
   r = e2e::RunCommand(cli + "render --scene shadow --size 32 --sampler aligned-exact -n 16 --server " +
                       server.address() + " -o " + img);
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  auto pixels = ReadNpy(img, &shape);
+  auto pixels = ReadNpy(img);
   ASSERT_TRUE(pixels.ok());
-  ASSERT_EQ(shape, (std::vector<size_t>{32, 32}));
+  ASSERT_EQ(pixels->shape, (std::vector<size_t>{32, 32}));
   const std::vector<double> ref = MakeShadowScene(32, 32, 1).Reference();
   double mse = 0.0;
-  for (size_t i = 0; i < ref.size(); ++i) mse += ((*pixels)[i] - ref[i]) * ((*pixels)[i] - ref[i]) / ref.size();
+  for (size_t i = 0; i < ref.size(); ++i) mse += (pixels->values[i] - ref[i]) * (pixels->values[i] - ref[i]) / ref.size();
   EXPECT_LT(mse, 1e-3);  // 16 samples of a [0, 1] integrand: far below 1/16
   EXPECT_GT(mse, 0.0);
 }

@@ -2,12 +2,13 @@
 // statuses. (The aligned samplers against a real server: tests/e2e.)
 #include <gtest/gtest.h>
 
+#include <alignset/npy.h>
+
 #include <cstdlib>
 #include <algorithm>
 #include <filesystem>
 #include <string>
 
-#include "render/npy.h"
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -36,24 +37,22 @@ class RenderCli : public ::testing::Test {
 TEST_F(RenderCli, ReferenceIsTheExactImage) {
   const CliRun r = RunCli("render --scene shadow --size 24 --reference -o " + dir_ + "/ref.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
-  std::vector<size_t> shape;
-  auto img = ReadNpy(dir_ + "/ref.npy", &shape);
+  auto img = ReadNpy(dir_ + "/ref.npy");
   ASSERT_TRUE(img.ok()) << img.status().message();
-  EXPECT_EQ(shape, (std::vector<size_t>{24, 24}));
-  EXPECT_EQ(*img, MakeShadowScene(24, 24, 1).Reference());
+  EXPECT_EQ(img->shape, (std::vector<size_t>{24, 24}));
+  EXPECT_EQ(img->values, MakeShadowScene(24, 24, 1).Reference());
 }
 
 TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
   const CliRun r = RunCli("render --scene antialias --size 32 --sampler owen-sobol -n 16 -s 3 -o " + dir_ + "/os.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("MSE against the exact image"), std::string::npos) << Said(r);
-  std::vector<size_t> shape;
-  auto img = ReadNpy(dir_ + "/os.npy", &shape);
+  auto img = ReadNpy(dir_ + "/os.npy");
   ASSERT_TRUE(img.ok());
   const Scene scene = MakeAntialiasScene(32, 32, 3);
   auto sampler = MakePixelSampler({"owen-sobol", 16});
   ASSERT_TRUE(sampler.ok());
-  EXPECT_EQ(*img, Render(scene, **sampler, 3, 1));
+  EXPECT_EQ(img->values, Render(scene, **sampler, 3, 1));
   // Line samples across the estimated edge, and the screen-space sampler.
   EXPECT_EQ(RunCli("render --size 16 --sampler line --orientation random -n 8 -o " + dir_ + "/l.npy").exit_code, 0);
   EXPECT_EQ(RunCli("render --size 16 --sampler screen-space-rank1 -n 8 -o " + dir_ + "/s.npy").exit_code, 0);

@@ -1,11 +1,15 @@
-#include "client/npy_array.h"
+#include <alignset/npy.h>
 
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
-namespace alignset::cli {
+namespace alignset {
 namespace {
 
 // The header dictionary of a .npy file: dtype, order, shape.
@@ -52,6 +56,20 @@ std::string NpyShapeText(const std::vector<size_t>& dims) {
   std::string s = "(";
   for (size_t i = 0; i < dims.size(); ++i) s += (i ? ", " : "") + std::to_string(dims[i]);
   return s + (dims.size() == 1 ? ",)" : ")");
+}
+
+std::string NpyHeader(const std::vector<size_t>& shape, bool fortran_order, const std::string& descr) {
+  std::string dict = "{'descr': '" + descr + "', 'fortran_order': " +
+                     (fortran_order ? "True" : "False") + ", 'shape': " + NpyShapeText(shape) + ", }";
+  // magic(6) + version(2) + header_len(2) + dict + padding + '\n' is a multiple of 64.
+  const size_t total = 10 + dict.size() + 1;
+  dict.append((64 - total % 64) % 64, ' ');
+  dict.push_back('\n');
+  std::string h("\x93NUMPY\x01\x00", 8);
+  const uint16_t len = static_cast<uint16_t>(dict.size());
+  h.push_back(static_cast<char>(len & 0xff));
+  h.push_back(static_cast<char>(len >> 8));
+  return h + dict;
 }
 
 StatusOr<NpyArray> ParseNpyArray(const std::string& data, const std::string& path,
@@ -129,4 +147,35 @@ StatusOr<NpyArray> ParseNpyArray(const std::string& data, const std::string& pat
   return out;
 }
 
-}  // namespace alignset::cli
+StatusOr<NpyArray> ReadNpy(const std::string& path, const NpyShapeCheck& check_shape) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return Status::InvalidArgument("cannot read " + path);
+  const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return ParseNpyArray(data, path, check_shape);
+}
+
+Status WriteNpy(const std::string& path, const std::vector<size_t>& shape,
+                const std::vector<double>& data) {
+  size_t count = 1;
+  for (size_t d : shape) count *= d;
+  if (count != data.size()) {
+    return Status::InvalidArgument("npy: shape holds " + std::to_string(count) +
+                                   " values, data has " + std::to_string(data.size()));
+  }
+  std::string out = NpyHeader(shape);
+  out.append(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double));
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) return Status::InvalidArgument("cannot write " + path);
+    f.write(out.data(), static_cast<std::streamsize>(out.size()));
+    if (!f) return Status::InvalidArgument("cannot write " + path);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
+  }
+  return Status::Ok();
+}
+
+}  // namespace alignset
