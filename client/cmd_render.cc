@@ -29,11 +29,14 @@ std::string SamplerHelp() {
   std::string s = "samplers:\n  the kinds of `alignset sample --list`:";
   for (const std::string& n : SamplerNames()) s += " " + n;
   s += "\n  pmj02bn-sheared, pmj02bn-sheared-exact  pmj02bn sheared to the pixel's estimated / exact θ\n"
-       "  screen-space-rank1   rank-1 lattice, per-pixel shifts optimized as blue noise (seeds/003)\n"
+       "  screen-space-rank1   rank-1 lattice, per-pixel shifts optimized as blue noise\n"
+       "                       (Belcour and Heitz, screen-space samplers with blue-noise error)\n"
        "  aligned              aligned sets from the server for the pixel's θ estimated by\n"
        "                       core/analysis's EstimateDirection on a --prepass of the pixel\n"
        "  aligned-exact        aligned sets for θ from the scene's geometry (the bound)\n"
-       "  line, segment        line / segment samples (seeds/004), --orientation\n";
+       "  line, segment        line / segment samples (Singh, Miller and Jarosz, \"Variance and\n"
+       "                       Convergence Analysis of Monte Carlo Line and Segment Sampling\"),\n"
+       "                       --orientation\n";
   return s;
 }
 

@@ -64,10 +64,12 @@ struct SamplerConfig {
 //    x = i / N is not random, a set per pixel plus a CP shift.
 //  - pmj02bn-sheared, pmj02bn-sheared-exact: a pooled pmj02bn set sheared to
 //    the pixel's θ (Algorithm 2), then CP-shifted; no shear without a direction.
-//  - screen-space-rank1: the seeds/003 sampler on `tile`.
+//  - screen-space-rank1: Belcour and Heitz's rank-1 lattice screen-space
+//    sampler on `tile`.
 //  - aligned, aligned-exact: the set of `sets` for the pixel's estimated or
 //    exact direction (ChooseSet under `policy`), CP-shifted per pixel.
-//  - line, segment: seeds/004 samples in `orientation`.
+//  - line, segment: line and segment samples (Singh, Miller and Jarosz) in
+//    `orientation`.
 // INVALID_ARGUMENT for an unknown name, a missing input, or an N the
 // sampler cannot honour.
 StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& config);
@@ -80,7 +82,8 @@ uint64_t PixelHash(uint64_t seed, int x, int y, uint64_t salt);
 // Two uniform numbers in [0,1) from a hash (a CP shift).
 Point2 HashShift(uint64_t h);
 
-// Line samples (seeds/004): N chords of the pixel along the direction at
+// Line samples (Singh, Miller and Jarosz, "Variance and Convergence Analysis
+// of Monte Carlo Line and Segment Sampling"): N chords of the pixel along the direction at
 // `line_deg` (the line's own direction), at jittered offsets across it; each
 // chord integrates f exactly. Unbiased: I = int dt int f ds, with t spread
 // over the projection of the unit square on the chords' normal.

@@ -26,7 +26,8 @@
 // pixel subsets, the blur criterion, seconds), DIR/tile_blur.csv (the
 // screen-space tile's blur criterion on test integrands), DIR/directions.txt
 // (the estimator against the geometry), DIR/line_rates.csv (line and segment
-// samples on clean straight edges, against seeds/004), and .npy images under
+// samples on clean straight edges, against the rates of Singh, Miller and
+// Jarosz), and .npy images under
 // DIR/images.
 #include <sys/stat.h>
 
@@ -191,7 +192,7 @@ void DirectionReport(std::ofstream& out, const SceneData& d, const std::vector<P
   }
 }
 
-// seeds/004's predictions on clean straight edges: 256 pixels, each a step
+// Singh, Miller and Jarosz's predictions on clean straight edges: 256 pixels, each a step
 // with a random normal and offset; variance of points (Owen-Sobol) and of
 // line and segment samples across, along and at random to the edge.
 void LineRates(const std::string& path, const std::vector<uint32_t>& ns) {

@@ -14,7 +14,7 @@ namespace alignset {
 // Radii are stated relative to r_max(N) = sqrt(2 / (sqrt(3) N)), the spacing
 // of N points in a hexagonal packing of the unit torus.
 
-// Dart throwing (seeds/002): uniform candidates, each kept if no earlier
+// Dart throwing: uniform candidates, each kept if no earlier
 // point lies within r. Starts at r = 0.75 r_max, close to the jamming limit
 // of random sequential addition (~0.78 r_max); whenever 4096 darts in a row
 // miss, r shrinks by 2 % (points already placed stay valid).

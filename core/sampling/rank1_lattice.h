@@ -7,8 +7,8 @@
 
 namespace alignset {
 
-// A rank-1 lattice s_i = frac(i * (1, g) / N + shift) (seeds/003 uses the
-// same form per pixel), with a Cranley-Patterson shift drawn from the seed.
+// A rank-1 lattice s_i = frac(i * (1, g) / N + shift) (the screen-space
+// sampler, screen_space_rank1.h, uses the same form per pixel), with a Cranley-Patterson shift drawn from the seed.
 // The generator g is F_(k-1) when N is the Fibonacci number F_k >= 3 (the
 // Fibonacci lattice), otherwise the Korobov generator with the largest
 // minimum distance between points (ties: smallest g), searched over every g

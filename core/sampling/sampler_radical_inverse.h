@@ -8,7 +8,7 @@
 
 namespace alignset {
 
-// The radical-inverse samplers of seeds/002: Halton (bases 2 and 3) and
+// The classic radical-inverse samplers: Halton (bases 2 and 3) and
 // Hammersley (i / N and base 2), plain or scrambled by random digit
 // permutations (one uniform permutation of the base's digits per digit
 // position and dimension, drawn from the seed, applied to every digit

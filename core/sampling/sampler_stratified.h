@@ -7,7 +7,7 @@
 
 namespace alignset {
 
-// The stratified samplers of the talk in seeds/002 (section "stratification"),
+// The classic stratified samplers (grid, jitter, n-rooks, multi-jittered),
 // each deterministic for (n, seed). Those that need a square N refuse any
 // other N with INVALID_ARGUMENT naming the nearest squares.
 
@@ -17,7 +17,7 @@ StatusOr<PointSet> RandomPoints(uint32_t n, uint64_t seed);
 // The centres of an m x m grid of strata (N = m^2). No randomness.
 StatusOr<PointSet> RegularGrid(uint32_t n);
 
-// Uniform jitter (seeds/002): the regular grid shifted by one random offset
+// Uniform jitter: the regular grid shifted by one random offset
 // inside a stratum, shared by every point (N = m^2).
 StatusOr<PointSet> UniformJitter(uint32_t n, uint64_t seed);
 

@@ -8,7 +8,9 @@
 
 namespace alignset {
 
-// The rank-1 lattice screen-space sampler of seeds/003: every pixel p of a
+// The rank-1 lattice screen-space sampler of Belcour and Heitz ("Lessons
+// Learned and Improvements when Building Screen-Space Samplers with
+// Blue-Noise Error Distribution"): every pixel p of a
 // tile uses the same rank-1 lattice, shifted by its own toroidal shift,
 //   sample(p, k) = frac(k * (1, g) / N + shift(p)),
 // with g = Rank1Generator(N). The shifts are a fixed multiset of uniform

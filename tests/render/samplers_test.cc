@@ -124,7 +124,7 @@ TEST(RenderSamplers, EveryEstimateAgreesWithTheExactPixelWithinItsBound) {
 }
 
 TEST(RenderSamplers, LineSamplesConvergeAtTheSeedsRates) {
-  // seeds/004: jittered lines across a step pre-filter it to a C0 function of
+  // Singh, Miller and Jarosz: jittered lines across a step pre-filter it to a C0 function of
   // the offset (variance ~ N^-3); lines along it keep the jump (~ N^-2).
   // Averaged over 48 straight edges at random angles and offsets (a single
   // edge's variance along it swings with where the jump falls in its stratum).
