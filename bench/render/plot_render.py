@@ -309,7 +309,7 @@ def main():
 
     # Blur criterion on the renderings.
     blur_cols = [c for c in rows[0].keys() if c.startswith("blur_rms_")]
-    md.append("## Blur criterion on the renderings (seeds/003): RMS of k_σ ⊛ (I − I_ref)")
+    md.append("## Blur criterion on the renderings (Belcour and Heitz's screen-space rank-1 sampler): RMS of k_σ ⊛ (I − I_ref)")
     md.append("")
     for s in scenes:
         for n in (256, 1024, 4096):
@@ -324,7 +324,7 @@ def main():
             md.append("")
     tile_path = os.path.join(raw, "tile_blur.csv")
     if os.path.exists(tile_path):
-        md.append("## Blur criterion on test integrands (seeds/003): the optimized shift tile against random shifts")
+        md.append("## Blur criterion on test integrands (Belcour and Heitz's screen-space rank-1 sampler): the optimized shift tile against random shifts")
         md.append("")
         md.append("64x64 tile, 128 Heaviside test integrands for the swaps (σ = 1), judged on 64 fresh ones: "
                   "Var over the tile of the blurred per-pixel error, mean over integrands.")
@@ -348,14 +348,14 @@ def main():
                 "points-owen-sobol": "−1.5 (a discontinuity)",
                 "segment-normal": "−2 (C0 along the segment, 2-D points; the pixel's periodized border stays a jump)",
                 "segment-edge": "−1.5 (no pre-filtering of the edge)", "segment-random": "between"}
-        md.append("## Line and segment samples on straight edges (seeds/004)")
+        md.append("## Line and segment samples on straight edges (Singh, Miller and Jarosz, line and segment sampling)")
         md.append("")
         md.append("256 pixels, each one step edge at a random angle and offset; 8 replicates each; "
                   "segments of half a pixel, centres Owen-scrambled Sobol. Variance (MSE) slopes over N = %d...%d."
                   % (FIT_MIN_N, max(max(v) for v in by.values())))
         md.append("")
         lns = sorted({int(r["n"]) for r in lr})
-        md.append(table(["estimator"] + ["N = %d" % n for n in (256, 1024, 4096) if n in lns] + ["slope", "seeds/004 predicts"],
+        md.append(table(["estimator"] + ["N = %d" % n for n in (256, 1024, 4096) if n in lns] + ["slope", "the line-sampling analysis predicts"],
                         [[e] + [fmt(by[e].get(n, float("nan"))) for n in (256, 1024, 4096) if n in lns] +
                          ["%.2f" % slope(sorted(by[e]), [by[e][n] for n in sorted(by[e])]), pred.get(e, "")]
                          for e in sorted(by)]))
