@@ -1,0 +1,139 @@
+#include "core/optimize/aligned_lattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numeric>
+#include <string>
+#include <utility>
+
+#include "core/analysis/convex_polygon.h"
+#include "core/analysis/lattice_variance.h"
+#include "core/optimize/optimizer.h"
+#include "core/spectral/direction_budget.h"
+#include "core/util/angles.h"
+#include "core/util/hash.h"
+
+namespace alignset {
+namespace {
+
+// Offsets of the scored edges from the centre, along their normal: one
+// through the centre and two that cut the square unevenly.
+constexpr double kEdgeOffsets[] = {0.0, 0.21, -0.33};
+constexpr double kCornerWeight = 0.5;
+// The window is sampled at 2 kWindowSteps + 1 angles.
+constexpr int kWindowSteps = 4;
+constexpr uint32_t kFullSearchLimit = 65536;
+
+struct Family {
+  std::vector<IndicatorSpectrum> edges;
+};
+
+Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg) {
+  Family f;
+  for (double d : directions_deg) {
+    for (int k = -kWindowSteps; k <= kWindowSteps; ++k) {
+      const double delta = window_deg * k / kWindowSteps;
+      const Vec2 n = UnitVector(d + delta);
+      for (double offset : kEdgeOffsets) {
+        const double c = 0.5 * (n.x + n.y) + offset;
+        Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
+        if (SignedArea(p) > 1e-12) f.edges.emplace_back(p);
+      }
+    }
+  }
+  return f;
+}
+
+// The score of one generator: the mean log variance of the family's edges
+// plus kCornerWeight times the log variance of the corner term, over the
+// dual points within `radius`.
+double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
+  const std::vector<Frequency> dual = Rank1DualHalfDisk(n, g, radius);
+  std::vector<double> edge_sum(family.edges.size(), 0.0);
+  double corner = 0.0;
+  for (const Frequency& h : dual) {
+    const double hx = h.a, hy = h.b;
+    for (size_t k = 0; k < family.edges.size(); ++k) {
+      edge_sum[k] += family.edges[k].Energy(hx, hy);
+    }
+    // (x - 1/2)(y - 1/2): coefficients i/(2 pi a) * i/(2 pi b) off the axes.
+    if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
+  }
+  // Each half-disk point stands for +-h: the factor 2 keeps these variances.
+  double score = 0.0;
+  for (double s : edge_sum) score += std::log(2.0 * s + 1e-300);
+  score /= static_cast<double>(std::max<size_t>(1, edge_sum.size()));
+  return score + kCornerWeight * std::log(2.0 * corner + 1e-300);
+}
+
+Status Validate(uint32_t n, const std::vector<double>& directions, const AlignedLatticeOptions& o) {
+  if (n < kMinPoints || n > kMaxPoints) {
+    return Status::InvalidArgument("aligned lattice: N must be in [" + std::to_string(kMinPoints) +
+                                   ", " + std::to_string(kMaxPoints) + "], got " +
+                                   std::to_string(n));
+  }
+  if (directions.empty() || directions.size() > static_cast<size_t>(kMaxArbitraryDirections)) {
+    return Status::InvalidArgument("aligned lattice: 1 to " +
+                                   std::to_string(kMaxArbitraryDirections) +
+                                   " directions, got " + std::to_string(directions.size()));
+  }
+  for (double d : directions) {
+    if (!std::isfinite(d)) return Status::InvalidArgument("aligned lattice: a direction is not finite");
+  }
+  if (!(o.window_deg >= 0.0 && o.window_deg <= 10.0)) {
+    return Status::InvalidArgument("aligned lattice: window_deg must be in [0, 10]");
+  }
+  if (o.finalists < 1) return Status::InvalidArgument("aligned lattice: finalists must be >= 1");
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
+    uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options) {
+  if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
+  const Family family = ScoredFamily(directions_deg, options.window_deg);
+  const int r_full = static_cast<int>(n / 2);
+  const int r_first = std::min(r_full, std::max(32, static_cast<int>(std::lround(8.0 * std::sqrt(n)))));
+  const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
+
+  std::vector<std::pair<double, uint32_t>> ranked;
+  for (uint32_t g = 1; g < n; g += stride) {
+    if (std::gcd(g, n) != 1) continue;
+    ranked.push_back({Score(n, g, r_first, family), g});
+  }
+  AlignedLatticeChoice choice;
+  choice.candidates = static_cast<uint32_t>(ranked.size());
+  const size_t keep = std::min(ranked.size(), static_cast<size_t>(options.finalists));
+  std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end());
+  ranked.resize(keep);
+  if (r_full > r_first) {
+    for (auto& [score, g] : ranked) score = Score(n, g, r_full, family);
+    std::sort(ranked.begin(), ranked.end());
+  }
+  choice.generator = ranked.front().second;
+  choice.score = ranked.front().first;
+  return choice;
+}
+
+PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
+  Pcg32 rng(HashCombine(seed, 0x616c6c6174ULL));
+  const uint64_t sx = rng.Uniform(n), sy = rng.Uniform(n);
+  PointSet points(n);
+  const double inv = 1.0 / n;
+  for (uint64_t i = 0; i < n; ++i) {
+    points[i] = {(static_cast<double>((i + sx) % n) + 0.5) * inv,
+                 (static_cast<double>((i * g + sy) % n) + 0.5) * inv};
+  }
+  return points;
+}
+
+StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directions_deg,
+                                  uint64_t seed, const AlignedLatticeOptions& options) {
+  auto choice = ChooseAlignedLatticeGenerator(n, directions_deg, options);
+  if (!choice.ok()) return choice.status();
+  return Rank1LatticePoints(n, choice->generator, seed);
+}
+
+}  // namespace alignset

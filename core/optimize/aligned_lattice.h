@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/util/point_set.h"
+#include "core/util/status.h"
+
+namespace alignset {
+
+// An aligned rank-1 lattice: N points {frac(i (1, g) / N + shift)} whose
+// generator g is chosen so that the lattice integrates step edges with
+// normals near the requested directions well.
+//
+// Why a lattice: its spectrum is zero except on the dual lattice, N points
+// per unit area spread evenly, so how far a strip along a direction stays
+// dark is set by g and can grow like N; the optimized sets are dark only
+// inside their frequency set, strips of length about sqrt(N)
+// (lattice_variance.h has the exact variance).
+//
+// How g is chosen: every g coprime to N (a stride subset above 65536 points)
+// is scored by the exact Cranley-Patterson variance of its lattice on a
+// fixed family of step edges: for each requested direction, the normals
+// direction + {-w, -w/2, 0, w/2, w} (w = window_deg: the served grid's half
+// step plus what a direction estimate is off by), each through three
+// offsets from the centre; plus the corner term of a non-periodic smooth
+// function, (x - 1/2)(y - 1/2), whose coefficients 1/(4 pi^2 a b) sit on the
+// hyperbolic cross and keep g away from lattices that are poor in general.
+// The score is the mean log variance of the edges plus half the log variance
+// of the corner term. Two stages: every candidate on the dual points within
+// a small radius, then the best `finalists` within radius N / 2. Ties go to
+// the smallest g, so the choice is a function of (N, directions, options).
+struct AlignedLatticeOptions {
+  double window_deg = 1.0;
+  int finalists = 32;
+};
+
+struct AlignedLatticeChoice {
+  uint32_t generator = 0;
+  double score = 0.0;           // the final stage's score (lower is better)
+  uint32_t candidates = 0;      // generators scored in the first stage
+};
+
+// INVALID_ARGUMENT for N outside [16, 2^20], no direction or more than 8, a
+// direction that is not finite, or a window outside [0, 10] degrees.
+StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
+    uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options = {});
+
+// The lattice with generator g and realization `seed`: the shift is a whole
+// number of columns and rows drawn from the seed plus half a cell, so every
+// realization is a centred N-rooks set (one point in each column and row, at
+// its middle): the midpoint rule in each coordinate.
+PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
+
+// ChooseAlignedLatticeGenerator, then Rank1LatticePoints.
+StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directions_deg,
+                                  uint64_t seed, const AlignedLatticeOptions& options = {});
+
+}  // namespace alignset
