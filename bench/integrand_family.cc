@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -39,6 +40,7 @@
 #include "core/analysis/exact_variance.h"
 #include "core/analysis/integrands.h"
 #include "core/analysis/variance.h"
+#include "core/optimize/aligned_lattice.h"
 #include "core/optimize/optimizer.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/spectral/fast_engine.h"
@@ -59,6 +61,9 @@ struct Options {
   // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
   bool supplement = false;
+  // "optimized" (the descent, the default) or "lattice" (the aligned rank-1
+  // lattice; realizations by seed, nothing cached).
+  std::string construction = "optimized";
   int threads = 2;
   OptimizerOptions opt;
   std::string cache = "build/bench-cache";
@@ -106,6 +111,12 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       }
       o->supplement = profile == "supplement";
       if (o->supplement) o->opt = SupplementOptimizerOptions();
+    } else if (a == "--construction") {
+      o->construction = next();
+      if (o->construction != "optimized" && o->construction != "lattice") {
+        std::fprintf(stderr, "integrand_family: --construction is optimized or lattice\n");
+        std::exit(2);
+      }
     } else if (a == "--stratify") {
       o->opt.stratify_axes = std::stoi(next()) != 0;
     } else if (a == "--kl") {
@@ -144,7 +155,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--profile current|supplement] [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
+          "  [--profile current|supplement] [--construction optimized|lattice] [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
       std::exit(0);
@@ -156,11 +167,80 @@ bool ParseArgs(int argc, char** argv, Options* o) {
   return true;
 }
 
-// One family member: a name and the integrands it averages over.
+// One family member: a name and the integrands it averages over, each
+// under `shifts` Cranley-Patterson shifts (-1: the run's --shifts; 0: the
+// set as it is, no shift: the squared error of the one estimate).
 struct Member {
   std::string name;
   std::vector<std::unique_ptr<Integrand>> parts;
+  int shifts = -1;
 };
+
+// A smooth function that is not periodic on the square, for the members an
+// established test suite integrates without a shift; only values and the
+// integral are needed (no exact Eq. 18 for these members).
+class SmoothNonPeriodic : public Integrand {
+ public:
+  SmoothNonPeriodic(std::string name, std::function<double(const Point2&)> f)
+      : name_(std::move(name)), f_(std::move(f)) {
+    // 64 x 64 Gauss-Legendre nodes: exact to rounding for these functions
+    // (Gaussians of sigma >= 0.1, polynomials of low degree).
+    static const std::vector<std::pair<double, double>> rule = GaussLegendre(64);
+    for (const auto& [x, wx] : rule)
+      for (const auto& [y, wy] : rule) integral_ += wx * wy * f_({x, y});
+  }
+  std::string name() const override { return name_; }
+  double Value(const Point2& p) const override { return f_(p); }
+  double Integral() const override { return integral_; }
+  double SquareIntegral() const override { return NAN; }
+  std::complex<double> Fourier(int, int) const override { return NAN; }
+
+ private:
+  // Nodes and weights on [0, 1] (Newton on the Legendre recurrence).
+  static std::vector<std::pair<double, double>> GaussLegendre(int k) {
+    std::vector<std::pair<double, double>> out;
+    for (int i = 1; i <= k; ++i) {
+      double x = std::cos(M_PI * (i - 0.25) / (k + 0.5)), dp = 0.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = x;
+        for (int j = 2; j <= k; ++j) {
+          const double p2 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p0) / j;
+          p0 = p1;
+          p1 = p2;
+        }
+        dp = k * (x * p1 - p0) / (x * x - 1.0);
+        const double dx = p1 / dp;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      out.push_back({0.5 * (x + 1.0), 1.0 / ((1.0 - x * x) * dp * dp)});
+    }
+    return out;
+  }
+  std::string name_;
+  std::function<double(const Point2&)> f_;
+  double integral_ = 0.0;
+};
+
+// The population of anisotropic Gaussians: sigma^2 in [0.01, 1] per axis,
+// a random rotation, the centre anywhere in the square; fixed by its seed.
+std::vector<std::unique_ptr<Integrand>> RandomGaussians(int count) {
+  std::vector<std::unique_ptr<Integrand>> out;
+  Pcg32 rng(0x6761757373ULL);
+  for (int k = 0; k < count; ++k) {
+    const double cx = rng.NextDouble(), cy = rng.NextDouble();
+    const double s1 = 0.01 + 0.99 * rng.NextDouble(), s2 = 0.01 + 0.99 * rng.NextDouble();
+    const double a = M_PI * rng.NextDouble(), c = std::cos(a), s = std::sin(a);
+    const double a11 = c * c / s1 + s * s / s2, a22 = s * s / s1 + c * c / s2;
+    const double a12 = c * s * (1.0 / s1 - 1.0 / s2);
+    out.push_back(std::make_unique<SmoothNonPeriodic>(
+        "gaussian", [=](const Point2& p) {
+          const double dx = p.x - cx, dy = p.y - cy;
+          return std::exp(-0.5 * (a11 * dx * dx + 2.0 * a12 * dx * dy + a22 * dy * dy));
+        }));
+  }
+  return out;
+}
 
 std::vector<Member> Family(double theta, double theta2, int offsets) {
   auto offset_at = [&](int e) { return offsets == 1 ? 0.0 : 0.5 * (e + 0.5) / offsets - 0.25; };
@@ -189,13 +269,35 @@ std::vector<Member> Family(double theta, double theta2, int offsets) {
   single("triangle", "triangle");
   single("gaussian", "gaussian");
   single("product", "product");
+  // Smooth and not periodic on the square: 1024 Gaussians (8 shifts each
+  // under CP), a linear and a quadratic ramp; without and with shifts.
+  for (int shifted = 0; shifted < 2; ++shifted) {
+    const std::string how = shifted ? " cp" : " noshift";
+    family.push_back({"gaussians" + how, RandomGaussians(1024), shifted ? 8 : 0});
+    Member ramp{"ramp" + how, {}, shifted ? -1 : 0};
+    ramp.parts.push_back(std::make_unique<SmoothNonPeriodic>(
+        "ramp", [](const Point2& p) { return p.x + p.y; }));
+    family.push_back(std::move(ramp));
+    Member quad{"quadratic" + how, {}, shifted ? -1 : 0};
+    quad.parts.push_back(std::make_unique<SmoothNonPeriodic>(
+        "quadratic", [](const Point2& p) { return p.x * p.x + 0.5 * p.y; }));
+    family.push_back(std::move(quad));
+  }
   return family;
 }
 
 double MemberVariance(const PointSet& points, const Member& m, int shifts) {
+  if (m.shifts >= 0) shifts = m.shifts;
   double v = 0.0;
   for (const auto& f : m.parts) {
     const Integrand& g = *f;
+    if (shifts == 0) {
+      double q = 0.0;
+      for (const Point2& p : points) q += g.Value(p);
+      const double e = q / static_cast<double>(points.size()) - g.Integral();
+      v += e * e;
+      continue;
+    }
     v += CranleyPattersonVariance(
              points, [&](const Point2& p) { return g.Value(p); }, g.Integral(), shifts, 12345)
              .variance;
@@ -259,6 +361,20 @@ void SaveSet(const std::string& path, const PointSet& p) {
 // The aligned set for (n, theta, seed), optimized or from the cache; the
 // optimization's wall time goes into *seconds when it ran.
 PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double* seconds) {
+  if (o.construction == "lattice") {
+    std::vector<double> dirs = {theta};
+    if (!std::isnan(o.theta2)) dirs.push_back(o.theta2);
+    AlignedLatticeOptions lattice;
+    lattice.threads = o.threads;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto set = AlignedLattice(n, dirs, static_cast<uint64_t>(seed), lattice);
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!set.ok()) {
+      std::fprintf(stderr, "integrand_family: %s\n", set.status().message().c_str());
+      std::exit(1);
+    }
+    return std::move(set).value();
+  }
   const std::string path = o.cache + "/set-" + Key(o, n, theta, seed) + ".bin";
   PointSet points;
   if (LoadSet(path, n, &points)) {
@@ -322,6 +438,7 @@ int Run(const Options& o) {
   std::filesystem::create_directories(o.cache);
   std::FILE* tsv = o.out.empty() ? nullptr : std::fopen(o.out.c_str(), "w");
   if (tsv) std::fprintf(tsv, "theta\tn\tintegrand\taligned\towen_sobol\tratio\n");
+  std::printf("# construction %s\n", o.construction.c_str());
   std::printf("# profile %s: weighting p=%g (warm-up p=%g for %g), stratify %d, zero radius %g, "
               "margin %g, K x(%g, %g, %g), sw=%g iterations=%d, engine tolerance %g; %d seed(s), "
               "Owen-Sobol mean of %d scrambles, %d shifts, %d edge offsets\n",

@@ -27,12 +27,14 @@ namespace alignset {
 // function, (x - 1/2)(y - 1/2), whose coefficients 1/(4 pi^2 a b) sit on the
 // hyperbolic cross and keep g away from lattices that are poor in general.
 // The score is the mean log variance of the edges plus half the log variance
-// of the corner term. Two stages: every candidate on the dual points within
-// a small radius, then the best `finalists` within radius N / 2. Ties go to
+// of the corner term. Two stages: every candidate on a coarse family (the
+// window's ends and middle) over the dual points within 8 sqrt(N), then the
+// best `finalists` on the whole family within radius N / 2. Ties go to
 // the smallest g, so the choice is a function of (N, directions, options).
 struct AlignedLatticeOptions {
   double window_deg = 1.0;
   int finalists = 32;
+  int threads = 1;  // 0: all cores; the choice does not depend on it
 };
 
 struct AlignedLatticeChoice {

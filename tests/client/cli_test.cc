@@ -1,6 +1,7 @@
 // The command line as a user meets it: the real binary, real files.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -30,6 +31,10 @@ TEST(Cli, BadInputGetsOneLineErrorAndNonZeroExit) {
       "optimize --n 64 --out ",
       "optimize --n 64 --dir 30 --engine warp --out ",
       "optimize --n 64 --dir 30 --bogus 1 --out ",
+      "optimize --n 15 --dir 30 --construction lattice --out ",
+      "optimize --n 64 --dir nan --construction lattice --out ",
+      "optimize --n 64 --dir 30 --construction lattice --window 11 --out ",
+      "optimize --n 64 --dir 30 --construction mesh --out ",
       "evaluate --normal 30 /nonexistent/file.txt --x ",
   };
   for (const char* c : cases) {
@@ -59,6 +64,24 @@ TEST(Cli, OptimizeWritesTheSetAndEvaluateReadsIt) {
   ASSERT_EQ(e.exit_code, 0) << e.err;
   EXPECT_NE(e.out.find("variance ratio"), std::string::npos);
   EXPECT_NE(e.out.find("mean periodogram 30 deg"), std::string::npos);
+}
+
+TEST(Cli, OptimizeLatticeWritesACentredLatticeAndItsRealizations) {
+  const std::string out = TempPath("lattice.txt");
+  const CliRun r = RunCli("optimize --n 256 --dir 37 --construction lattice -m 2 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("aligned rank-1 lattice, generator"), std::string::npos) << r.out;
+  auto sets = alignset::cli::ReadPointSets(out);
+  ASSERT_TRUE(sets.ok()) << sets.status().ToString();
+  ASSERT_EQ(sets->size(), 2u);
+  EXPECT_NE((*sets)[0], (*sets)[1]);
+  for (const alignset::PointSet& set : *sets) {
+    ASSERT_EQ(set.size(), 256u);
+    for (const alignset::Point2& p : set) {  // cell centres (i + 1/2) / N
+      EXPECT_DOUBLE_EQ(p.x * 256 - 0.5, std::round(p.x * 256 - 0.5));
+      EXPECT_DOUBLE_EQ(p.y * 256 - 0.5, std::round(p.y * 256 - 0.5));
+    }
+  }
 }
 
 TEST(PointFile, TextAndNpyRoundTripBitExact) {

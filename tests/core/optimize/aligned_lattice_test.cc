@@ -43,6 +43,20 @@ TEST(AlignedLattice, BeatsTheKorobovLatticeOverASpreadOfAngles) {
   }
 }
 
+// A lattice whose points lie on few lines integrates some edges exactly
+// (g = 1 and the edge through the centre at 45 degrees) and everything else
+// badly; the choice must never be one, whatever the direction.
+TEST(AlignedLattice, NeverDegenerate) {
+  for (uint32_t n : {64u, 256u, 1024u}) {
+    for (double theta : {0.0, 26.565, 45.0, 90.0, 135.0, 153.435}) {
+      auto choice = ChooseAlignedLatticeGenerator(n, {theta});
+      ASSERT_TRUE(choice.ok());
+      EXPECT_GE(Rank1MinDistanceTimesN(n, choice->generator), 0.4 * std::sqrt(double(n)))
+          << "N=" << n << " theta=" << theta << " g=" << choice->generator;
+    }
+  }
+}
+
 TEST(AlignedLattice, TwoDirectionsServeBoth) {
   const uint32_t n = 1024;
   const uint32_t korobov = Rank1Generator(n);

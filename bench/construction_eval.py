@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""An evaluator of point sets that shares no code with alignset's core.
+
+It reads point sets from files (UTK text, one "x y" a line, '#' comments;
+several sets separated by '#' lines are read as one file per set here) and
+measures, with NumPy only:
+
+  edge D:      the Cranley-Patterson variance of step edges whose normal is
+               theta + D degrees (D = 0, 0.5, 1, 2), averaged over 8 parallel
+               edges at offsets in [-1/4, 1/4] and over both signs of D;
+  gauss0:      the mean squared error, without any shift, over a fixed,
+               seeded population of anisotropic Gaussians (sigma^2 in
+               [0.01, 1] per axis, random rotation, centre anywhere in the
+               square), the test an established suite runs;
+  gauss-cp:    the same Gaussians under Cranley-Patterson shifts;
+  ramp0/cp:    linear x + y and quadratic x^2 + y/2 ramps, without / with shifts.
+
+Each sampler sees the same shifts and the same integrands. Several files for
+one sampler (Owen-Sobol scrambles, lattice realizations) are averaged.
+
+  construction_eval.py --theta 37 --label NAME FILE [FILE ...] [--label NAME FILE ...]
+      [--shifts 512] [--gaussians 1024] [--out table.tsv]
+"""
+import argparse
+import math
+import sys
+
+import numpy as np
+
+
+def read_points(path):
+    rows = []
+    with open(path) as fh:
+        for line in fh:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            x, y = line.split()[:2]
+            rows.append((float(x), float(y)))
+    return np.array(rows)
+
+
+def clipped_area(theta_deg, offset):
+    """Area of {p in [0,1]^2 : (p - c).n >= 0}, c = (1/2,1/2) + offset n,
+    by clipping the square (Sutherland-Hodgman) and the shoelace formula."""
+    n = np.array([math.cos(math.radians(theta_deg)), math.sin(math.radians(theta_deg))])
+    c = np.array([0.5, 0.5]) + offset * n
+    square = [np.array(p, float) for p in [(0, 0), (1, 0), (1, 1), (0, 1)]]
+    out = []
+    for i in range(4):
+        a, b = square[i], square[(i + 1) % 4]
+        da, db = (a - c) @ n, (b - c) @ n
+        if da >= 0:
+            out.append(a)
+        if (da >= 0) != (db >= 0):
+            out.append(a + da / (da - db) * (b - a))
+    s = 0.0
+    for i in range(len(out)):
+        a, b = out[i], out[(i + 1) % len(out)]
+        s += a[0] * b[1] - a[1] * b[0]
+    return s / 2
+
+
+def gauss_legendre_grid(k=96):
+    x, w = np.polynomial.legendre.leggauss(k)
+    x = 0.5 * (x + 1)
+    w = 0.5 * w
+    X, Y = np.meshgrid(x, x, indexing="ij")
+    W = np.outer(w, w)
+    return np.stack([X.ravel(), Y.ravel()], 1), W.ravel()
+
+
+class Gaussians:
+    def __init__(self, count, seed=20261125):
+        rng = np.random.default_rng(seed)
+        self.c = rng.random((count, 2))
+        s2 = rng.uniform(0.01, 1.0, (count, 2))
+        a = rng.uniform(0, math.pi, count)
+        ca, sa = np.cos(a), np.sin(a)
+        # A = R diag(1/s2) R^T
+        self.a11 = ca * ca / s2[:, 0] + sa * sa / s2[:, 1]
+        self.a22 = sa * sa / s2[:, 0] + ca * ca / s2[:, 1]
+        self.a12 = ca * sa * (1 / s2[:, 0] - 1 / s2[:, 1])
+        nodes, weights = gauss_legendre_grid()
+        self.reference = np.array([weights @ self.values(nodes, k) for k in range(count)])
+
+    def values(self, p, k):
+        dx = p[:, 0] - self.c[k, 0]
+        dy = p[:, 1] - self.c[k, 1]
+        return np.exp(-0.5 * (self.a11[k] * dx * dx + 2 * self.a12[k] * dx * dy + self.a22[k] * dy * dy))
+
+    def mean_values(self, p):
+        """The estimate (mean over points) of every Gaussian."""
+        out = np.empty(len(self.c))
+        for k in range(len(self.c)):
+            out[k] = self.values(p, k).mean()
+        return out
+
+
+RAMPS = [(lambda p: p[:, 0] + p[:, 1], 1.0), (lambda p: p[:, 0] ** 2 + 0.5 * p[:, 1], 1.0 / 3 + 0.25)]
+
+
+def edge_variance(points, theta, deltas, shifts):
+    offsets = np.linspace(-0.25, 0.25, 8)
+    out = []
+    for d in deltas:
+        v = []
+        for sign in ((1, -1) if d else (1,)):
+            t = theta + sign * d
+            n = np.array([math.cos(math.radians(t)), math.sin(math.radians(t))])
+            for o in offsets:
+                c = np.array([0.5, 0.5]) + o * n
+                ref = clipped_area(t, o)
+                est = np.empty(len(shifts))
+                for k, s in enumerate(shifts):
+                    q = (points + s) % 1.0
+                    est[k] = np.mean(q @ n >= c @ n)
+                v.append(np.mean((est - ref) ** 2))
+        out.append(float(np.mean(v)))
+    return out
+
+
+def evaluate(points, theta, deltas, shifts, gaussians, gauss_shifts):
+    r = {}
+    for d, v in zip(deltas, edge_variance(points, theta, deltas, shifts)):
+        r["edge %g" % d] = v
+    r["gauss0"] = float(np.mean((gaussians.mean_values(points) - gaussians.reference) ** 2))
+    cp = [np.mean((gaussians.mean_values((points + s) % 1.0) - gaussians.reference) ** 2) for s in gauss_shifts]
+    r["gauss-cp"] = float(np.mean(cp))
+    for name, (f, ref) in zip(("ramp1", "ramp2"), RAMPS):
+        r[name + "0"] = float((f(points).mean() - ref) ** 2)
+        r[name + "-cp"] = float(np.mean([(f((points + s) % 1.0).mean() - ref) ** 2 for s in shifts]))
+    return r
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--theta", type=float, required=True)
+    ap.add_argument("--shifts", type=int, default=512)
+    ap.add_argument("--gaussians", type=int, default=1024)
+    ap.add_argument("--gauss-shifts", type=int, default=8)
+    ap.add_argument("--out")
+    a, rest = ap.parse_known_args()
+    groups, label = [], None
+    it = iter(rest)
+    for tok in it:
+        if tok == "--label":
+            label = next(it)
+            groups.append((label, []))
+        else:
+            if not groups:
+                sys.exit("construction_eval: a file before the first --label")
+            groups[-1][1].append(tok)
+    rng = np.random.default_rng(7)
+    shifts = rng.random((a.shifts, 2))
+    gauss_shifts = rng.random((a.gauss_shifts, 2))
+    gaussians = Gaussians(a.gaussians)
+    deltas = [0, 0.5, 1, 2]
+    rows = []
+    for label, files in groups:
+        per = [evaluate(read_points(f), a.theta, deltas, shifts, gaussians, gauss_shifts) for f in files]
+        mean = {k: float(np.mean([p[k] for p in per])) for k in per[0]}
+        n = len(read_points(files[0]))
+        rows.append((label, n, len(files), mean))
+    keys = list(rows[0][3].keys())
+    lines = ["sampler\tN\tsets\ttheta\t" + "\t".join(keys)]
+    for label, n, m, mean in rows:
+        lines.append("%s\t%d\t%d\t%g\t" % (label, n, m, a.theta) + "\t".join("%.3e" % mean[k] for k in keys))
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    if a.out:
+        with open(a.out, "a") as fh:
+            fh.write(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Constructions side by side, judged by bench/construction_eval.py (NumPy,
+# no code shared with the core): Owen-Sobol (16 scrambles), the aligned
+# lattice (4 realizations) and the optimized set (one seed), on edges at
+# theta + 0 / 0.5 / 1 / 2 degrees, 1024 seeded Gaussians and two ramps,
+# with and without Cranley-Patterson shifts.
+#
+#   N=256,1024,4096 THETA=10,30,45,63,82 bash bench/construction_eval.sh [OUT.tsv]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR="${BUILD_DIR:-build}"
+CLI="$BUILD_DIR/client/alignset"
+N="${N:-256,1024,4096}"
+THETA="${THETA:-10,30,45,63,82}"
+SHIFTS="${SHIFTS:-256}"
+GAUSSIANS="${GAUSSIANS:-1024}"
+# Two-direction sets, A:B pairs, judged on the edges of both directions.
+PAIRS="${PAIRS:-30:120,20:65}"
+OUT="${1:-bench/results/construction_eval.tsv}"
+WORK="$BUILD_DIR/construction-eval"
+mkdir -p "$WORK"
+: > "$OUT"
+for n in ${N//,/ }; do
+  for s in $(seq 1 16); do
+    [ -f "$WORK/os_${n}_$s.txt" ] || "$CLI" sample owen-sobol -n "$n" -s "$s" -o "$WORK/os_${n}_$s.txt" >/dev/null
+  done
+  for t in ${THETA//,/ }; do
+    for s in 1 2 3 4; do
+      "$CLI" optimize -n "$n" --dir "$t" --construction lattice -s "$s" -o "$WORK/lat_${n}_${t}_$s.txt" >/dev/null
+    done
+    [ -f "$WORK/opt_${n}_${t}.txt" ] || "$CLI" optimize -n "$n" --dir "$t" -s 1 -o "$WORK/opt_${n}_${t}.txt" >/dev/null 2>&1
+    /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
+      --label owen-sobol "$WORK"/os_${n}_*.txt --label lattice "$WORK"/lat_${n}_${t}_*.txt \
+      --label optimized "$WORK/opt_${n}_${t}.txt" --out "$OUT.part" | tail -n +2
+  done
+  for pair in ${PAIRS//,/ }; do
+    a="${pair%%:*}"; b="${pair##*:}"
+    for s in 1 2 3 4; do
+      "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction lattice -s "$s" -o "$WORK/lat2_${n}_${a}_${b}_$s.txt" >/dev/null
+    done
+    [ -f "$WORK/opt2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" -s 1 -o "$WORK/opt2_${n}_${a}_${b}.txt" >/dev/null 2>&1
+    for t in "$a" "$b"; do
+      /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
+        --label owen-sobol "$WORK"/os_${n}_*.txt --label "lattice-2dir($a,$b)" "$WORK"/lat2_${n}_${a}_${b}_*.txt \
+        --label "optimized-2dir($a,$b)" "$WORK/opt2_${n}_${a}_${b}.txt" --out "$OUT.part" | tail -n +2
+    done
+  done
+done
+# One header line, then the rows.
+{ head -1 "$OUT.part"; grep -v '^sampler' "$OUT.part"; } > "$OUT"
+rm -f "$OUT.part"
+echo "construction_eval: wrote $OUT"
