@@ -20,6 +20,7 @@ one sampler (Owen-Sobol scrambles, lattice realizations) are averaged.
 
   construction_eval.py --theta 37 --label NAME FILE [FILE ...] [--label NAME FILE ...]
       [--shifts 512] [--gaussians 1024] [--out table.tsv]
+  construction_eval.py --self-test   checks the evaluator against closed forms
 """
 import argparse
 import math
@@ -133,7 +134,31 @@ def evaluate(points, theta, deltas, shifts, gaussians, gauss_shifts):
     return r
 
 
+def self_test():
+    """The evaluator against what is known in closed form: one point under
+    CP shifts has variance A (1 - A) on an indicator of area A (the edges'
+    areas and tests), and the quadrature integrates an axis-aligned Gaussian
+    to its erf product (the Gaussians' references)."""
+    rng = np.random.default_rng(3)
+    # One point under a uniform shift is a uniform point: variance A (1 - A).
+    v = edge_variance(np.array([[0.3, 0.6]]), 30.0, [0], rng.random((20000, 2)))[0]
+    offsets = np.linspace(-0.25, 0.25, 8)
+    expected = np.mean([clipped_area(30.0, o) * (1 - clipped_area(30.0, o)) for o in offsets])
+    ok = abs(v / expected - 1) < 0.03
+    print("one point: %.4f against A(1-A) = %.4f: %s" % (v, expected, "ok" if ok else "FAIL"))
+    nodes, weights = gauss_legendre_grid()
+    s, c = 0.1, (0.3, 0.8)
+    quad = weights @ np.exp(-0.5 * (((nodes[:, 0] - c[0]) / s) ** 2 + ((nodes[:, 1] - c[1]) / s) ** 2))
+    one = [s * math.sqrt(math.pi / 2) * (math.erf((1 - ci) / (s * math.sqrt(2))) + math.erf(ci / (s * math.sqrt(2)))) for ci in c]
+    exact = one[0] * one[1]
+    ok_q = abs(quad - exact) < 1e-12
+    print("quadrature: %.15f against %.15f: %s" % (quad, exact, "ok" if ok_q else "FAIL"))
+    return 0 if ok and ok_q else 1
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--theta", type=float, required=True)
     ap.add_argument("--shifts", type=int, default=512)
@@ -174,4 +199,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
