@@ -1,11 +1,13 @@
-// The integrand family benchmark (issue: the low-frequency floor): the CP
-// variance of aligned optimized sets against Owen-scrambled Sobol (the mean of
+// The integrand family benchmark: the CP variance (or, for the "noshift"
+// members, the squared error of the set as it is) of aligned sets against
+// Owen-scrambled Sobol (the mean of
 // `--scrambles` scrambles, same shifts) on every integrand of the family, at
 // several N and angles, with ratios and fitted slopes; optionally the exact
 // Eq. 18 variance beside the Monte Carlo figure.
 //
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
+//       [--construction optimized|lattice|lattice-start]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
 //        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
 //        --tolerance T]
@@ -61,8 +63,9 @@ struct Options {
   // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
   bool supplement = false;
-  // "optimized" (the descent, the default) or "lattice" (the aligned rank-1
-  // lattice; realizations by seed, nothing cached).
+  // "optimized" (the descent, the default), "lattice" (the aligned rank-1
+  // lattice; realizations by seed, nothing cached) or "lattice-start" (the
+  // descent from the aligned lattice instead of Owen-Sobol).
   std::string construction = "optimized";
   int threads = 2;
   OptimizerOptions opt;
@@ -113,8 +116,10 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       if (o->supplement) o->opt = SupplementOptimizerOptions();
     } else if (a == "--construction") {
       o->construction = next();
-      if (o->construction != "optimized" && o->construction != "lattice") {
-        std::fprintf(stderr, "integrand_family: --construction is optimized or lattice\n");
+      if (o->construction != "optimized" && o->construction != "lattice" &&
+          o->construction != "lattice-start") {
+        std::fprintf(stderr,
+                     "integrand_family: --construction is optimized, lattice or lattice-start\n");
         std::exit(2);
       }
     } else if (a == "--stratify") {
@@ -155,7 +160,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--profile current|supplement] [--construction optimized|lattice] [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
+          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start]\n"
+          "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
       std::exit(0);
@@ -333,7 +339,8 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
-    << fp.radius << ";tol=" << p.engine_tolerance << ";v=5";
+    << fp.radius << ";tol=" << p.engine_tolerance << ";v=5"
+    << (o.construction == "lattice-start" ? ";start=lattice" : "");
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
   char hex[17];
@@ -387,6 +394,14 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   if (!std::isnan(o.theta2)) problem.directions.push_back(o.theta2);
   problem.seed = static_cast<uint64_t>(seed);
   problem.frequency_params = Params(o, n);
+  if (o.construction == "lattice-start") {
+    auto start = AlignedLattice(n, problem.directions, static_cast<uint64_t>(seed));
+    if (!start.ok()) {
+      std::fprintf(stderr, "integrand_family: %s\n", start.status().message().c_str());
+      std::exit(1);
+    }
+    problem.start = std::move(start).value();
+  }
   FastEngine engine(o.threads);
   const auto t0 = std::chrono::steady_clock::now();
   auto result = Optimize(problem, o.opt, engine);
