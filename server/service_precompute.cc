@@ -1,0 +1,219 @@
+// Precompute: a batch stream over a key space (lazily enumerated, at most
+// one item per worker queued), with progress, heartbeats and an ETA.
+#include "server/service.h"
+
+#include <spdlog/spdlog.h>
+
+#include <deque>
+#include <memory>
+#include <thread>
+
+#include "server/log_text.h"
+#include "server/service_internal.h"
+#include "server/validation.h"
+
+namespace alignset::server {
+using service_internal::Clock;
+using service_internal::ClientGone;
+using service_internal::kPoll;
+using service_internal::Since;
+
+grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
+                                         const v1::PrecomputeRequest* req,
+                                         grpc::ServerWriter<v1::PrecomputeProgress>* writer) {
+  if (auto a = Authorize(ctx); !a.ok()) return a;
+  metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
+  // A precompute stream holds a thread for as long as it runs: their number
+  // is capped instead.
+  struct StreamSlot {
+    std::atomic<int>* count;
+    Metrics* metrics;
+    Clock::time_point t0 = Clock::now();
+    ~StreamSlot() {
+      count->fetch_sub(1);
+      metrics->latency_precompute.Observe(Since(t0));
+    }
+  } slot{&precompute_streams_, metrics_};
+  if (precompute_streams_.fetch_add(1) >= config_.max_precompute_streams) {
+    return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                        std::to_string(config_.max_precompute_streams) +
+                            " precompute streams are running (--max-precompute-streams); retry later");
+  }
+  if (req->n().empty()) return Invalid(Status::InvalidArgument("give at least one n"), "Precompute");
+  if (req->n().size() > 64) {
+    return Invalid(Status::InvalidArgument("at most 64 values of n per request"), "Precompute");
+  }
+  for (uint32_t n : req->n()) {
+    if (Status s = ValidatePointCount(n, config_.max_n); !s.ok()) return Invalid(s, "Precompute");
+  }
+  std::vector<CanonicalDirections> space;
+  // 0 means whole degrees here: the 46-key space and its order stay what
+  // they were for every existing client.
+  auto grid = ResolveAngleGrid(req->steps_per_degree(), AngleGrid::kWholeDegree);
+  if (!grid.ok()) return Invalid(grid.status(), "Precompute");
+  switch (req->space()) {
+    case v1::ONE_DIRECTION:
+    case v1::TWO_DIRECTIONS: {
+      if (!req->keys().empty()) {
+        return Invalid(Status::InvalidArgument("explicit keys need space = EXPLICIT"), "Precompute");
+      }
+      const int count = req->space() == v1::ONE_DIRECTION ? 1 : 2;
+      const AngleGrid g = count == 1 ? *grid : AngleGrid::kWholeDegree;
+      for (size_t i = 0; i < CanonicalKeyCount(count, g); ++i) {
+        space.push_back(CanonicalKeyAt(count, i, g));
+      }
+      break;
+    }
+    case v1::EXPLICIT: {
+      if (req->keys().empty()) {
+        return Invalid(Status::InvalidArgument("space = EXPLICIT needs at least one key"), "Precompute");
+      }
+      for (const auto& k : req->keys()) {
+        std::vector<double> d(k.directions_deg().begin(), k.directions_deg().end());
+        if (!k.exact_directions_deg().empty()) {
+          d.assign(k.exact_directions_deg().begin(), k.exact_directions_deg().end());
+        }
+        auto canon = ValidateAlignedSetRequest(req->n(0), d, config_.max_n, *grid);
+        if (!canon.ok()) return Invalid(canon.status(), "Precompute");
+        space.push_back(canon->key);
+      }
+      break;
+    }
+    default:
+      return Invalid(Status::InvalidArgument("space must be ONE_DIRECTION, TWO_DIRECTIONS or EXPLICIT"),
+                     "Precompute");
+  }
+  const uint32_t shards = std::max<uint32_t>(1, req->shard_count());
+  if (req->shard_index() >= shards) {
+    return Invalid(Status::InvalidArgument("shard index " + std::to_string(req->shard_index()) +
+                                           " is not below the shard count " + std::to_string(shards)),
+                   "Precompute");
+  }
+  if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
+  const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
+  // The items are enumerated as they are reached, not listed up front: a
+  // request may name 64 N x 4141 keys x 64 realizations. Item i (N outer,
+  // then keys, realizations inner) belongs to this shard when
+  // i mod shards == shard_index.
+  const uint64_t space_size = space.size();
+  const uint64_t per_n = space_size * realizations;
+  const uint64_t all = static_cast<uint64_t>(req->n().size()) * per_n;
+  const uint64_t total = req->shard_index() < all ? (all - req->shard_index() + shards - 1) / shards : 0;
+  auto item = [&](uint64_t j) {
+    const uint64_t i = req->shard_index() + j * shards;
+    return scheduler_->KeyFor(req->n(static_cast<int>(i / per_n)), space[(i / realizations) % space_size],
+                              static_cast<uint32_t>(i % realizations));
+  };
+  const std::string client = ctx->peer();
+  spdlog::info("precompute: {} items (shard {}/{}) from {}", total, req->shard_index(), shards,
+               Quoted(client));
+
+  const auto t0 = Clock::now();
+  v1::PrecomputeProgress p;
+  p.set_total(total);
+  Clock::time_point last_sent{};
+  bool client_gone = false;
+  // Sends the counts; cache skips are throttled, everything else goes out.
+  auto send = [&](const storage::SetKey* key, const std::string& error, bool force) {
+    const uint64_t resolved = p.done() + p.cached_already() + p.failed();
+    p.set_remaining(total - resolved);
+    p.set_elapsed_seconds(Since(t0));
+    p.set_estimated_seconds_left(
+        p.done() > 0 ? p.elapsed_seconds() / static_cast<double>(p.done()) * p.remaining()
+                     : (p.remaining() == 0 ? 0.0 : -1.0));
+    if (key) FillKey(*key, p.mutable_last_key(), *grid);
+    p.set_last_error(error);
+    if (!force && Clock::now() - last_sent < std::chrono::milliseconds(100)) return;
+    last_sent = Clock::now();
+    if (!writer->Write(p)) client_gone = true;
+  };
+  // The total goes out at once, and something at least every two seconds
+  // while an item runs (an optimization at N = 65536 takes a minute or more).
+  constexpr auto kHeartbeat = std::chrono::seconds(2);
+  auto heartbeat = [&] {
+    if (Clock::now() - last_sent >= kHeartbeat) send(nullptr, "", true);
+  };
+  send(nullptr, "", true);
+
+  struct Outstanding {
+    storage::SetKey key;
+    std::unique_ptr<Ticket> ticket;
+  };
+  std::deque<Outstanding> outstanding;
+  // Enough concurrent items to keep every worker busy; the batch never fills
+  // the queue, so interactive requests always find room.
+  const size_t window = static_cast<size_t>(config_.workers);
+  auto reap = [&] {
+    for (auto it = outstanding.begin(); it != outstanding.end();) {
+      if (!it->ticket->Done()) {
+        ++it;
+        continue;
+      }
+      auto r = it->ticket->Result();
+      std::string error;
+      if (r.ok()) {
+        if (it->ticket->from_cache()) {
+          p.set_cached_already(p.cached_already() + 1);
+        } else {
+          p.set_done(p.done() + 1);
+        }
+      } else {
+        p.set_failed(p.failed() + 1);
+        error = r.status().message();
+      }
+      send(&it->key, error, true);
+      it = outstanding.erase(it);
+    }
+  };
+
+  for (uint64_t j = 0; j < total; ++j) {
+    const storage::SetKey key = item(j);
+    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
+    auto stored = scheduler_->IsStored(key);
+    if (stored.ok() && *stored) {
+      p.set_cached_already(p.cached_already() + 1);
+      send(&key, "", false);
+      continue;
+    }
+    for (;;) {
+      reap();
+      if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
+      if (outstanding.size() >= window) {
+        outstanding.front().ticket->Wait(kPoll);
+        heartbeat();
+        continue;
+      }
+      auto ticket = scheduler_->Acquire(key, Priority::kBatch, client);
+      if (ticket.ok()) {
+        outstanding.push_back({key, std::move(ticket).value()});
+        break;
+      }
+      if (ticket.status().code() == Status::Code::kResourceExhausted) {
+        // Interactive work filled the queue; wait for room.
+        if (outstanding.empty()) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        } else {
+          outstanding.front().ticket->Wait(kPoll);
+        }
+        heartbeat();
+        continue;
+      }
+      if (ticket.status().code() == Status::Code::kUnavailable) return ToGrpc(ticket.status());
+      p.set_failed(p.failed() + 1);
+      send(&key, ticket.status().message(), true);
+      break;
+    }
+  }
+  while (!outstanding.empty()) {
+    reap();
+    if (outstanding.empty()) break;
+    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
+    outstanding.front().ticket->Wait(kPoll);
+    heartbeat();
+  }
+  send(nullptr, "", true);
+  spdlog::info("precompute finished: {} optimized, {} cached already, {} failed in {:.1f} s",
+               p.done(), p.cached_already(), p.failed(), Since(t0));
+  return grpc::Status::OK;
+}
+}  // namespace alignset::server
