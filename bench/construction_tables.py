@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Markdown tables of the constructions compared: the family bench's TSVs of
+the aligned lattice and the optimized sets (both against Owen-Sobol, 16
+scrambles, same shifts), and the independent evaluator's table
+(bench/construction_eval.py).
+
+  construction_tables.py [RESULTS_DIR]   (default bench/results)
+"""
+import csv
+import os
+import sys
+
+
+def family(path):
+    d = {}
+    with open(path) as fh:
+        for r in csv.DictReader(fh, delimiter="\t"):
+            d[(float(r["theta"]), int(r["n"]), r["integrand"])] = float(r["ratio"])
+    return d
+
+
+def main(argv):
+    res = argv[1] if len(argv) > 1 else "bench/results"
+    lat = family(os.path.join(res, "family_lattice.tsv"))
+    opt = family(os.path.join(res, "family_smooth_optimized.tsv"))
+    thetas = sorted({k[0] for k in lat})
+    ns = sorted({k[1] for k in lat})
+    members = []
+    for k in lat:
+        if k[2] not in members:
+            members.append(k[2])
+    out = ["### Variance / Owen-Sobol's on the family: aligned lattice | optimized set", ""]
+    for n in ns:
+        out.append("N = %d" % n)
+        out.append("")
+        out.append("| member | " + " | ".join("θ = %g°" % t for t in thetas) + " |")
+        out.append("|---|" + "---|" * len(thetas))
+        for m in members:
+            cells = []
+            for t in thetas:
+                a, b = lat.get((t, n, m)), opt.get((t, n, m))
+                if a is None or b is None:
+                    cells.append("–")
+                    continue
+                fmt = lambda x: ("%.3g" % x) if x >= 0.001 else ("%.0e" % x if x > 0 else "0")
+                cells.append("%s \\| %s%s" % (fmt(a), fmt(b), " ✗" if a > 1 else ""))
+            out.append("| %s | %s |" % (m, " | ".join(cells)))
+        out.append("")
+    out.append("✗: the lattice is worse than Owen-Sobol there.")
+    out.append("")
+    ev = os.path.join(res, "construction_eval.tsv")
+    if os.path.exists(ev):
+        rows = list(csv.DictReader(open(ev), delimiter="\t"))
+        os_rows = {(r["N"], r["theta"]): r for r in rows if r["sampler"] == "owen-sobol"}
+        out.append("### The independent evaluator: Owen-Sobol's variance / the construction's "
+                   "(higher is better), edges 0 / 0.5 / 1 / 2 degrees off")
+        out.append("")
+        out.append("| N | θ | construction | edge 0° | 0.5° | 1° | 2° | Gaussians, no shift | Gaussians, CP |")
+        out.append("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            if r["sampler"] == "owen-sobol":
+                continue
+            o = os_rows[(r["N"], r["theta"])]
+            g = lambda k: float(o[k]) / float(r[k]) if float(r[k]) > 0 else float("inf")
+            out.append("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.3g | %.2f |" % (
+                r["N"], r["theta"], r["sampler"], g("edge 0"), g("edge 0.5"), g("edge 1"), g("edge 2"),
+                g("gauss0"), g("gauss-cp")))
+        out.append("")
+    sys.stdout.write("\n".join(out) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
