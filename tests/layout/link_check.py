@@ -32,15 +32,16 @@ def documents(root):
     return [d for d in docs if os.path.isfile(d)]
 
 
-def prose_lines(text):
-    """The lines outside fenced code blocks, with code spans removed."""
+def prose_lines(text, keep_code_spans=False):
+    """The lines outside fenced code blocks, with code spans removed (kept
+    for headings: GitHub's anchor keeps the text of a heading's code span)."""
     fenced = False
     for number, line in enumerate(text.split("\n"), 1):
         if line.lstrip().startswith(("```", "~~~")):
             fenced = not fenced
             continue
         if not fenced:
-            yield number, CODE_SPAN_RE.sub("", line)
+            yield number, line if keep_code_spans else CODE_SPAN_RE.sub("", line)
 
 
 def slug(heading):
@@ -52,7 +53,7 @@ def slug(heading):
 def anchors(path):
     seen, out = {}, set()
     with open(path, encoding="utf-8") as fh:
-        for _, line in prose_lines(fh.read()):
+        for _, line in prose_lines(fh.read(), keep_code_spans=True):
             m = HEADING_RE.match(line)
             if not m:
                 continue
@@ -89,8 +90,11 @@ def self_test():
     with tempfile.TemporaryDirectory() as tmp:
         os.makedirs(os.path.join(tmp, "docs"))
         with open(os.path.join(tmp, "docs", "a.md"), "w") as fh:
-            fh.write("# Title\n\n## Where it helps (measured)\n\nText.\n")
+            fh.write("# Title\n\n## Where it helps (measured)\n\n## The `alignset render` command\n\n"
+                     "## Where it helps (measured)\n")
         good = ("# R\n\n[a](docs/a.md) [b](docs/a.md#where-it-helps-measured) [web](https://x.org/y)\n"
+                "[c](docs/a.md#the-alignset-render-command) [d](docs/a.md#where-it-helps-measured-1)\n"
+                "![e](docs/a.md) [f](#r)\n"
                 "`[not](a/link)`\n```\n[not](either)\n```\n")
         with open(os.path.join(tmp, "README.md"), "w") as fh:
             fh.write(good)
