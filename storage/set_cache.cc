@@ -87,4 +87,11 @@ StatusOr<std::vector<SetSummary>> SetCache::ListSummaries(std::optional<uint32_t
   return out;
 }
 
+Status SetCache::Delete(const SetKey&) { return Status::Internal("this cache cannot delete sets"); }
+StatusOr<FileSpace> SetCache::Space() { return Status::Internal("this cache has no file"); }
+Status SetCache::EnableIncrementalVacuum() { return Status::Internal("this cache has no file"); }
+StatusOr<int64_t> SetCache::IncrementalVacuum(int64_t) {
+  return Status::Internal("this cache has no file");
+}
+
 }  // namespace alignset::storage

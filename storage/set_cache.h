@@ -88,6 +88,17 @@ struct VerifyReport {
   std::vector<std::string> problems;  // what SQLite said, one line each
 };
 
+// Where the file's pages go (PRAGMA page_size, page_count, freelist_count):
+// the file is page_size * page_count bytes, of which the free pages hold
+// nothing (they are reused by later writes, or returned by a vacuum).
+struct FileSpace {
+  int64_t page_size = 0;
+  int64_t page_count = 0;
+  int64_t freelist_count = 0;
+  int64_t file_bytes() const { return page_size * page_count; }
+  int64_t used_bytes() const { return page_size * (page_count - freelist_count); }
+};
+
 struct MergeReport {
   int64_t added = 0;
   int64_t skipped_existing = 0;
@@ -102,6 +113,12 @@ class SetCache {
  public:
   struct Options {
     bool read_only = false;
+    // Also immutable (implies read_only): opened as the SQLite URI
+    // file:PATH?mode=ro&immutable=1, so no lock is taken, no -wal / -shm file
+    // is read or made, and the file is never written. For a shipped cache
+    // file that nothing writes while it is served (a read-only replica); a
+    // file that is still being written must not be opened this way.
+    bool immutable = false;
     int busy_timeout_ms = 5000;
     // synchronous=FULL instead of NORMAL: also survives power loss without
     // losing the last commits (a process crash loses nothing either way).
@@ -143,6 +160,19 @@ class SetCache {
   // this SQLite may only read), locked past the busy timeout, or the disk is
   // full.
   virtual Status ProbeWrite() = 0;
+
+  // For a bounded file (the server's --max-cache-bytes). The defaults say
+  // the cache cannot do it (fakes need not).
+  // Removes one set in one transaction; NotFound when it is not there.
+  virtual Status Delete(const SetKey& key);
+  virtual StatusOr<FileSpace> Space();
+  // Makes later deletions returnable to the file system a little at a time
+  // (PRAGMA auto_vacuum = INCREMENTAL). A file made without it is rebuilt
+  // once by VACUUM (on its own connection, so reads go on meanwhile).
+  virtual Status EnableIncrementalVacuum();
+  // Returns at most `pages` free pages to the file system, in one short
+  // transaction (PRAGMA incremental_vacuum); the free pages left after it.
+  virtual StatusOr<int64_t> IncrementalVacuum(int64_t pages);
 };
 
 }  // namespace alignset::storage

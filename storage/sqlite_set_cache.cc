@@ -97,6 +97,23 @@ void BindFilter(Stmt& s, const std::optional<uint32_t>& n, const std::optional<s
   if (profile) s.BindText(2, *profile);
 }
 
+// file:PATH?mode=ro&immutable=1, with the characters a URI path may not
+// hold percent-encoded.
+std::string ImmutableUri(const std::string& path) {
+  std::string out = "file:";
+  for (unsigned char c : path) {
+    if (c == '%' || c == '?' || c == '#' || c < 0x21 || c > 0x7e) {
+      static const char* kHex = "0123456789ABCDEF";
+      out += '%';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "?mode=ro&immutable=1";
+}
+
 Status FsyncPath(const std::string& path, bool directory) {
   const int fd = ::open(path.c_str(), (directory ? O_DIRECTORY : 0) | O_RDONLY | O_CLOEXEC);
   if (fd < 0) return Status::Internal("open " + path + " for fsync failed");
@@ -298,6 +315,62 @@ class SqliteSetCache final : public SetCache {
     return FsyncPath(parent.string(), true);
   }
 
+  Status Delete(const SetKey& key) override {
+    if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
+    if (Status s = ValidateKey(key); !s.ok()) return s;
+    std::lock_guard<std::mutex> lock(mu_);
+    auto tx = Transaction::Begin(db_, Transaction::Kind::kWrite);
+    if (!tx.ok()) return tx.status();
+    {
+      auto stmt = Stmt::Prepare(db_.get(), std::string("DELETE FROM sets") + kKeyWhere);
+      if (!stmt.ok()) return stmt.status();
+      BindKey(*stmt, key);
+      if (Status s = stmt->Run(); !s.ok()) return s;
+    }
+    if (sqlite3_changes(db_.get()) == 0) return Status::NotFound("no cached set for " + KeyToString(key));
+    return tx->Commit();
+  }
+
+  StatusOr<FileSpace> Space() override {
+    std::lock_guard<std::mutex> lock(mu_);
+    FileSpace f;
+    for (auto [sql, out] : {std::pair{"PRAGMA page_size", &f.page_size},
+                            std::pair{"PRAGMA page_count", &f.page_count},
+                            std::pair{"PRAGMA freelist_count", &f.freelist_count}}) {
+      auto v = db_.QueryText(sql);
+      if (!v.ok()) return v.status();
+      *out = std::stoll(*v);
+    }
+    return f;
+  }
+
+  Status EnableIncrementalVacuum() override {
+    if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      auto mode = db_.QueryText("PRAGMA auto_vacuum");
+      if (!mode.ok()) return mode.status();
+      if (*mode == "2") return Status::Ok();  // incremental already
+      if (Status s = db_.Exec("PRAGMA auto_vacuum = INCREMENTAL"); !s.ok()) return s;
+    }
+    // The switch takes effect only through a VACUUM, which rebuilds the
+    // file. On a connection of its own: the server's reads (WAL snapshots)
+    // go on; its writes wait (busy timeout) or are served not stored.
+    auto db = Db::Open(path_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, options_.busy_timeout_ms);
+    if (!db.ok()) return db.status();
+    if (Status s = db->Exec("PRAGMA auto_vacuum = INCREMENTAL"); !s.ok()) return s;
+    return RetryBusy(options_.busy_timeout_ms, [&] { return db->Exec("VACUUM"); });
+  }
+
+  StatusOr<int64_t> IncrementalVacuum(int64_t pages) override {
+    if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
+    std::lock_guard<std::mutex> lock(mu_);
+    if (Status s = db_.Exec("PRAGMA incremental_vacuum(" + std::to_string(pages) + ")"); !s.ok()) return s;
+    auto left = db_.QueryText("PRAGMA freelist_count");
+    if (!left.ok()) return left.status();
+    return std::stoll(*left);
+  }
+
   Status ProbeWrite() override {
     if (options_.read_only) return Status::InvalidArgument("cache " + path_ + " is open read-only");
     std::lock_guard<std::mutex> lock(mu_);
@@ -332,6 +405,10 @@ class SqliteSetCache final : public SetCache {
   }
 
   StatusOr<Db> OpenReader(const std::string& path) const {
+    if (options_.immutable && path == path_) {
+      return Db::Open(ImmutableUri(path), SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_URI,
+                      options_.busy_timeout_ms);
+    }
     return Db::Open(path, SQLITE_OPEN_READONLY | SQLITE_OPEN_NOMUTEX, options_.busy_timeout_ms);
   }
 
@@ -383,11 +460,21 @@ StatusOr<std::unique_ptr<SetCache>> SetCache::Open(const std::string& path, cons
     return Status::InvalidArgument("the set cache needs a plain file path, got '" + path + "'");
   }
   if (options.busy_timeout_ms < 0) return Status::InvalidArgument("busy_timeout_ms must be >= 0");
-  const int flags = SQLITE_OPEN_NOMUTEX | (options.read_only ? SQLITE_OPEN_READONLY
-                                                             : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
-  auto db = Db::Open(path, flags, options.busy_timeout_ms);
+  Options opts = options;
+  if (opts.immutable) opts.read_only = true;
+  int flags = SQLITE_OPEN_NOMUTEX | (opts.read_only ? SQLITE_OPEN_READONLY
+                                                    : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE);
+  std::string name = path;
+  if (opts.immutable) {
+    // An immutable file that is not there would otherwise open as empty.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return Status::NotFound("open " + path + ": no such file");
+    flags |= SQLITE_OPEN_URI;
+    name = ImmutableUri(path);
+  }
+  auto db = Db::Open(name, flags, opts.busy_timeout_ms);
   if (!db.ok()) return db.status();
-  if (options.read_only) {
+  if (opts.read_only) {
     auto version = SchemaVersion(*db);
     if (!version.ok()) return version.status();
     if (*version < 1) return Status::NotFound(path + " holds no alignset cache");
@@ -412,7 +499,7 @@ StatusOr<std::unique_ptr<SetCache>> SetCache::Open(const std::string& path, cons
     s = RetryBusy(options.busy_timeout_ms, [&] { return Migrate(*db, Migrations()); });
     if (!s.ok()) return s;
   }
-  return std::unique_ptr<SetCache>(new SqliteSetCache(path, options, std::move(db).value()));
+  return std::unique_ptr<SetCache>(new SqliteSetCache(path, opts, std::move(db).value()));
 }
 
 }  // namespace alignset::storage

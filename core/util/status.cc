@@ -14,6 +14,7 @@ std::string Status::ToString() const {
     case Code::kCancelled: name = "CANCELLED"; break;
     case Code::kDataLoss: name = "DATA_LOSS"; break;
     case Code::kInternal: name = "INTERNAL"; break;
+    case Code::kFailedPrecondition: name = "FAILED_PRECONDITION"; break;
   }
   return std::string(name) + ": " + message_;
 }

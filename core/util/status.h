@@ -20,6 +20,7 @@ class Status {
     kCancelled,
     kDataLoss,
     kInternal,
+    kFailedPrecondition,
   };
 
   Status() = default;
@@ -32,6 +33,9 @@ class Status {
   static Status Cancelled(std::string m) { return Status(Code::kCancelled, std::move(m)); }
   static Status DataLoss(std::string m) { return Status(Code::kDataLoss, std::move(m)); }
   static Status Internal(std::string m) { return Status(Code::kInternal, std::move(m)); }
+  static Status FailedPrecondition(std::string m) {
+    return Status(Code::kFailedPrecondition, std::move(m));
+  }
 
   bool ok() const { return code_ == Code::kOk; }
   Code code() const { return code_; }
