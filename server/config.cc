@@ -16,6 +16,9 @@ struct Flag {
   const char* name;
   const char* help;
   std::function<Status(ServerConfig&, const std::string&)> apply;
+  // A switch: "--name" alone means 1 (also --name=0|1, and 0|1|true|false
+  // from the environment).
+  bool boolean = false;
 };
 
 template <typename T>
@@ -82,6 +85,24 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::quick_check, "quick-check", 0, 1)},
       {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
        StringFlag(&ServerConfig::metrics_listen)},
+      {"read-only", "       serve the --db file read-only and immutable (a replica of a shipped cache):\n"
+                    "                     never written; a miss is NOT_FOUND naming the key",
+       [](ServerConfig& c, const std::string& v) {
+         if (v == "1" || v == "true") {
+           c.read_only = true;
+         } else if (v == "0" || v == "false") {
+           c.read_only = false;
+         } else {
+           return Status::InvalidArgument("--read-only: '" + v + "' is neither 0 nor 1");
+         }
+         return Status::Ok();
+       },
+       true},
+      {"fill-from", "ADDR  with --read-only: ask the writer at ADDR (HOST:PORT) for a missing set;\n"
+                    "                     its answer is kept in memory only",
+       StringFlag(&ServerConfig::fill_from)},
+      {"max-cache-bytes", "B  bound the cache file: evict the least recently served sets (default 0: none)",
+       IntFlag(&ServerConfig::max_cache_bytes, "max-cache-bytes", 0, INT64_MAX)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
        IntFlag(&ServerConfig::memory_cache_mb, "memory-cache-mb", 0, 1 << 20)},
       {"max-request-bytes", "B  largest request message (default 1048576)",
@@ -168,6 +189,10 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
       if (name == f.name) flag = &f;
     }
     if (flag == nullptr) return Status::InvalidArgument("unknown option --" + name + " (try --help)");
+    if (!has_value && flag->boolean) {
+      value = "1";
+      has_value = true;
+    }
     if (!has_value) {
       if (i + 1 >= argc) return Status::InvalidArgument("--" + name + " needs a value");
       value = argv[++i];
@@ -183,6 +208,18 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
     auto m = ParseListenAddress(config.metrics_listen, "--metrics-listen");
     if (!m.ok()) return m.status();
     if (m->unix_socket) return Status::InvalidArgument("--metrics-listen takes HOST:PORT");
+  }
+  if (!config.fill_from.empty()) {
+    if (!config.read_only) return Status::InvalidArgument("--fill-from needs --read-only");
+    auto f = ParseListenAddress(config.fill_from, "--fill-from");
+    if (!f.ok()) return f.status();
+  }
+  if (config.read_only && config.max_cache_bytes > 0) {
+    return Status::InvalidArgument("--max-cache-bytes bounds a writer's file; a --read-only replica writes none");
+  }
+  if (config.max_cache_bytes > 0 && config.max_cache_bytes < (int64_t{1} << 16)) {
+    return Status::InvalidArgument("--max-cache-bytes " + std::to_string(config.max_cache_bytes) +
+                                   " is below 64 KiB (65536; the value is in bytes)");
   }
   return config;
 }

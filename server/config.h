@@ -43,7 +43,18 @@ struct ServerConfig {
   // PRAGMA quick_check of the cache file at start (in the background).
   int quick_check = 1;
   // Prometheus text exposition on HOST:PORT (GET /metrics); empty: off.
+  // With --token-file it takes the same bearer token.
   std::string metrics_listen;
+  // A read-only replica: the cache file is opened read-only and immutable
+  // and never written; a miss is NOT_FOUND naming the key, or, with
+  // fill_from (HOST:PORT of a writer), asked of the writer and kept in
+  // memory only. Precompute is refused (FAILED_PRECONDITION).
+  bool read_only = false;
+  std::string fill_from;
+  double fill_timeout_seconds = 600.0;
+  // A writer's bound on its cache file, in bytes (0: none): the least
+  // recently served sets are evicted to stay under it.
+  int64_t max_cache_bytes = 0;
   // Decoded canonical sets (and their encoded alignments) kept in memory.
   int64_t memory_cache_mb = 512;
   // Largest request message accepted (larger: RESOURCE_EXHAUSTED from gRPC).

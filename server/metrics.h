@@ -79,6 +79,19 @@ class Metrics {
   // first failed write): the number of problems it listed, 0 when clean.
   std::atomic<uint64_t> database_integrity_errors{0};
   std::atomic<uint64_t> integrity_checks{0};
+  // A read-only replica (--read-only): misses it refused (no --fill-from),
+  // and sets it got from its writer (--fill-from), kept in memory only.
+  std::atomic<bool> read_only{false};
+  std::atomic<uint64_t> replica_misses{0};
+  std::atomic<uint64_t> sets_filled{0};
+  // A bounded file (--max-cache-bytes): sets evicted, their bytes (an
+  // estimate: blob plus row overhead, whole pages), the file's size at the
+  // last look, and background vacuum passes.
+  int64_t max_cache_bytes = 0;
+  std::atomic<uint64_t> cache_evictions{0};
+  std::atomic<uint64_t> cache_evicted_bytes{0};
+  std::atomic<int64_t> cache_file_bytes{0};
+  std::atomic<uint64_t> cache_vacuums{0};
 
   // Latency of each call from its arrival to its end (set, error or
   // cancel), and of each optimization (its slices).

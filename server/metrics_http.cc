@@ -6,6 +6,7 @@
 
 #include <cstring>
 
+#include "server/bearer_token.h"
 #include "server/listen_address.h"
 
 namespace alignset::server {
@@ -18,6 +19,9 @@ struct MetricsHttpHandler {
     if (response == nullptr) return MHD_NO;
     MHD_add_response_header(response, MHD_HTTP_HEADER_CONTENT_TYPE, content_type);
     if (code == MHD_HTTP_METHOD_NOT_ALLOWED) MHD_add_response_header(response, MHD_HTTP_HEADER_ALLOW, "GET, HEAD");
+    if (code == MHD_HTTP_UNAUTHORIZED) {
+      MHD_add_response_header(response, MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"alignset\"");
+    }
     const MHD_Result r = MHD_queue_response(connection, code, response);
     MHD_destroy_response(response);
     return r;
@@ -27,6 +31,22 @@ struct MetricsHttpHandler {
                            const char* /*version*/, const char* /*upload_data*/,
                            size_t* upload_data_size, void** /*con_cls*/) {
     auto* self = static_cast<MetricsHttpServer*>(cls);
+    if (!self->token_.empty()) {
+      // Before anything else, the method and path included: without the
+      // token a client learns nothing but that one is needed.
+      const char* auth = MHD_lookup_connection_value(connection, MHD_HEADER_KIND, MHD_HTTP_HEADER_AUTHORIZATION);
+      if (auth == nullptr || !BearerTokenMatches(auth, self->token_)) {
+        if (*upload_data_size != 0) {
+          *upload_data_size = 0;
+          return MHD_YES;
+        }
+        if (self->refused_ != nullptr) self->refused_->fetch_add(1, std::memory_order_relaxed);
+        return Answer(MHD_HTTP_UNAUTHORIZED, "text/plain; charset=utf-8",
+                      auth == nullptr ? "this endpoint requires 'Authorization: Bearer <token>'\n"
+                                      : "invalid bearer token\n",
+                      connection);
+      }
+    }
     const bool get = std::strcmp(method, MHD_HTTP_METHOD_GET) == 0 ||
                      std::strcmp(method, MHD_HTTP_METHOD_HEAD) == 0;
     if (!get) {
@@ -45,8 +65,9 @@ struct MetricsHttpHandler {
   }
 };
 
-StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std::string& address,
-                                                                      std::function<std::string()> render) {
+StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std::string& address, std::string token,
+                                                                      std::function<std::string()> render,
+                                                                      std::atomic<uint64_t>* refused) {
   auto a = ParseListenAddress(address, "--metrics-listen");
   if (!a.ok()) return a.status();
   if (a->unix_socket) return Status::InvalidArgument("--metrics-listen takes HOST:PORT");
@@ -60,7 +81,7 @@ StatusOr<std::unique_ptr<MetricsHttpServer>> MetricsHttpServer::Start(const std:
     return Status::InvalidArgument("--metrics-listen " + address + ": cannot resolve '" + a->host +
                                    "': " + gai_strerror(rc));
   }
-  std::unique_ptr<MetricsHttpServer> server(new MetricsHttpServer(std::move(render)));
+  std::unique_ptr<MetricsHttpServer> server(new MetricsHttpServer(std::move(token), std::move(render), refused));
   sockaddr_storage sa{};
   std::memcpy(&sa, found->ai_addr, found->ai_addrlen);
   const bool ipv6 = found->ai_family == AF_INET6;

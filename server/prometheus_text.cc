@@ -51,6 +51,14 @@ const std::map<std::string, Meta>& Fields() {
       {"database_integrity_errors",
        {Kind::kGauge, "problems PRAGMA quick_check found in the cache file (0: none)"}},
       {"requests_estimate", {Kind::kCounter, "EstimateDirection calls"}},
+      {"read_only", {Kind::kGauge, "1 on a read-only replica (--read-only), 0 on a writer"}},
+      {"replica_misses", {Kind::kCounter, "misses a read-only replica answered NOT_FOUND"}},
+      {"sets_filled", {Kind::kCounter, "sets a replica got from its writer (--fill-from)"}},
+      {"max_cache_bytes", {Kind::kGauge, "the cache file's bound (--max-cache-bytes; 0: none)"}},
+      {"cache_evictions", {Kind::kCounter, "sets evicted from the cache file, least recently served first"}},
+      {"cache_evicted_bytes", {Kind::kCounter, "bytes of the evicted sets in the file (estimated)"}},
+      {"cache_file_bytes", {Kind::kGauge, "size of the cache file at the last look (bounded writers)"}},
+      {"cache_vacuums", {Kind::kCounter, "background incremental vacuum passes"}},
   };
   return fields;
 }

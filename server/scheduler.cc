@@ -131,7 +131,17 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   // lock per iteration and does not change the set (progress_every is not
   // part of the profile).
   o.optimizer.progress_every = 1;
+  if (o.read_only) o.max_cache_bytes = 0;
   std::unique_ptr<Scheduler> s(new Scheduler(o, cache, metrics));
+  if (o.max_cache_bytes > 0) {
+    metrics->max_cache_bytes = o.max_cache_bytes;
+    CacheEvictor::Options eo;
+    eo.max_bytes = o.max_cache_bytes;
+    eo.pinned = [p = s.get()](const std::string& name) { return p->InFlight(name); };
+    eo.evicted = [p = s.get()](const std::string& name) { p->lru_.Erase(name); };
+    s->evictor_ = std::make_unique<CacheEvictor>(cache, metrics, std::move(eo));
+    if (Status st = s->evictor_->Start(); !st.ok()) return st;
+  }
   for (int i = 0; i < options.workers; ++i) {
     auto engine = options.engine_factory
                       ? options.engine_factory()
@@ -271,6 +281,7 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
   const std::string name = KeyString(key);
   if (auto hit = lru_.Get(name)) {
     metrics_->cache_hits_memory.fetch_add(1, std::memory_order_relaxed);
+    if (evictor_) evictor_->Touch(name, key);
     return Ready(std::move(hit));
   }
   const int prio = static_cast<int>(priority);
@@ -298,6 +309,7 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
     auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
     lru_.Put(name, entry);
     metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
+    if (evictor_) evictor_->Touch(name, key);
     return Ready(std::move(entry));
   }
   if (stored.status().code() == Status::Code::kDataLoss) {
@@ -306,6 +318,13 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
   } else if (stored.status().code() != Status::Code::kNotFound) {
     spdlog::error("cache read {}: {}", name, stored.status().message());
     return Status::Unavailable("cache read failed: " + stored.status().message());
+  }
+  if (options_.read_only && !options_.fill) {
+    const uint64_t n = metrics_->replica_misses.fetch_add(1, std::memory_order_relaxed) + 1;
+    if (LogThisOne(n)) spdlog::info("read-only replica: no set {} ({} misses so far)", name, n);
+    return Status::NotFound("read-only replica: " + name +
+                            " is not in its cache file; precompute it into the shipped file, or "
+                            "start the replica with --fill-from WRITER");
   }
 
   std::lock_guard<std::mutex> lock(mu_);
@@ -467,11 +486,13 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
       auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
       lru_.Put(job->name, entry);
       metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
+      if (evictor_) evictor_->Touch(job->name, key);
       std::lock_guard<std::mutex> lock(mu_);
       job->entry = std::move(entry);
       job->from_cache = true;
       return SliceEnd::kDone;
     }
+    if (options_.fill) return FillSlice(job);
     OptimizationProblem problem;
     problem.n = key.n;
     problem.directions = {Phi1Degrees(key.dirs)};
@@ -547,14 +568,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     record.optimize_seconds = seconds;
     record.engine = engine->name();
     record.created_unix = static_cast<int64_t>(std::time(nullptr));
-    bool stored = true;
-    if (Status put = cache_->Put(record); !put.ok()) {
-      // The set is still good: serve it, but say loudly that it was not kept.
-      stored = false;
-      metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
-      spdlog::error("cache write {}: {} (served, not stored)", job->name, put.message());
-      if (options_.on_write_error) options_.on_write_error(put);
-    }
+    const bool stored = Store(record, job->name);
     metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
     metrics_->RecordOptimization(seconds);
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
@@ -567,6 +581,56 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
   job->status = status;
   job->entry = std::move(entry);
   return SliceEnd::kDone;
+}
+
+bool Scheduler::Store(const storage::SetRecord& record, const std::string& name) {
+  if (options_.read_only) {
+    metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  if (evictor_) {
+    // The key is still in inflight_ (pinned) while it is written.
+    if (Status room = evictor_->MakeRoom(record.key, evictor_->EstimateBytes(record.key.n)); !room.ok()) {
+      metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
+      spdlog::warn("cache write {}: {} (served, not stored)", name, room.message());
+      return false;
+    }
+  }
+  if (Status put = cache_->Put(record); !put.ok()) {
+    // The set is still good: serve it, but say loudly that it was not kept.
+    metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
+    spdlog::error("cache write {}: {} (served, not stored)", name, put.message());
+    if (options_.on_write_error) options_.on_write_error(put);
+    return false;
+  }
+  if (evictor_) evictor_->Touch(name, record.key);
+  return true;
+}
+
+Scheduler::SliceEnd Scheduler::FillSlice(const std::shared_ptr<Job>& job) {
+  const auto t0 = Clock::now();
+  auto record = options_.fill(job->key);
+  Status status;
+  std::shared_ptr<const CanonicalEntry> entry;
+  if (record.ok()) {
+    metrics_->sets_filled.fetch_add(1, std::memory_order_relaxed);
+    spdlog::info("filled {} from the writer in {:.3f} s (kept in memory)", job->name,
+                 std::chrono::duration<double>(Clock::now() - t0).count());
+    entry = std::make_shared<const CanonicalEntry>(std::move(record).value(), false);
+    lru_.Put(job->name, entry);
+  } else {
+    spdlog::warn("fill {} from the writer: {}", job->name, record.status().message());
+    status = record.status();
+  }
+  std::lock_guard<std::mutex> lock(mu_);
+  job->status = status;
+  job->entry = std::move(entry);
+  return SliceEnd::kDone;
+}
+
+bool Scheduler::InFlight(const std::string& key_name) const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return inflight_.count(key_name) != 0;
 }
 
 void Scheduler::BeginShutdown() {

@@ -15,6 +15,7 @@
 
 #include "core/optimize/optimizer.h"
 #include "core/spectral/spectral_engine.h"
+#include "server/cache_evictor.h"
 #include "server/canonical_entry.h"
 #include "server/metrics.h"
 #include "server/set_lru.h"
@@ -131,6 +132,14 @@ class Scheduler {
     size_t memory_cache_bytes = size_t{512} << 20;
     // Called (from a worker) when a finished set could not be written.
     std::function<void(const Status&)> on_write_error;
+    // A read-only replica: nothing is written. A miss is NOT_FOUND naming
+    // the key, unless `fill` is set: then the key's job asks it (the
+    // writer, --fill-from) instead of optimizing, and keeps the answer in
+    // memory only.
+    bool read_only = false;
+    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)> fill;
+    // > 0: the cache file's bound (CacheEvictor); writers only.
+    int64_t max_cache_bytes = 0;
     // Makes each worker's engine; unset: MakeSpectralEngine(engine,
     // threads_per_worker). Tests put an engine here that they can hold.
     std::function<StatusOr<std::unique_ptr<SpectralEngine>>()> engine_factory;
@@ -165,6 +174,8 @@ class Scheduler {
   // BeginShutdown, then waits for the workers.
   void Shutdown();
 
+  // Whether a call waits for this key's job now (queued or running).
+  bool InFlight(const std::string& key_name) const;
   uint32_t queue_length() const;
   uint32_t running() const;
   uint32_t paused() const;
@@ -185,6 +196,11 @@ class Scheduler {
   Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics);
   void WorkerLoop(SpectralEngine* engine);
   SliceEnd RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine, bool engine_holds_k);
+  // A replica's job (--fill-from): the set from the writer, kept in memory.
+  SliceEnd FillSlice(const std::shared_ptr<Job>& job);
+  // Writes a finished set (a writer), making room first when the file is
+  // bounded; false when it was not stored.
+  bool Store(const storage::SetRecord& record, const std::string& name);
   void Release(const std::shared_ptr<Job>& job, const Ticket* ticket);
   // mu_ held; what the job's waiters asked to run goes into `callbacks`.
   void FinishLocked(const std::shared_ptr<Job>& job, Callbacks* callbacks);
@@ -207,6 +223,7 @@ class Scheduler {
   storage::SetCache* cache_;
   Metrics* metrics_;
   SetLru lru_;
+  std::unique_ptr<CacheEvictor> evictor_;  // with max_cache_bytes only
   std::vector<std::unique_ptr<SpectralEngine>> engines_;
   std::vector<std::thread> workers_;
 

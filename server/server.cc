@@ -9,6 +9,7 @@
 #include <sstream>
 #include <thread>
 
+#include "server/fill_client.h"
 #include "server/integrity_watch.h"
 #include "server/listen_address.h"
 #include "server/metrics_http.h"
@@ -108,10 +109,16 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
     creds = grpc::SslServerCredentials(ssl);
   }
 
-  auto cache = storage::SetCache::Open(impl->db_path);
+  storage::SetCache::Options cache_options;
+  cache_options.immutable = config.read_only;
+  auto cache = storage::SetCache::Open(impl->db_path, cache_options);
   if (!cache.ok()) return Status::Unavailable("cannot open the cache " + impl->db_path + ": " + cache.status().message());
   impl->cache = std::move(cache).value();
-  if (Status w = impl->cache->ProbeWrite(); !w.ok()) {
+  impl->metrics.read_only.store(config.read_only);
+  if (config.read_only) {
+    // Not an alarm: a replica writes nothing by design.
+    impl->metrics.database_writable.store(false);
+  } else if (Status w = impl->cache->ProbeWrite(); !w.ok()) {
     impl->metrics.database_writable.store(false);
     spdlog::warn("the cache {} is not writable ({}): sets will be served but not stored, and "
                  "optimized again after a restart",
@@ -137,7 +144,12 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
   impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);
   so.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
-  if (config.quick_check) impl->integrity->CheckInBackground("at start");
+  // A replica's shipped file was checked where it was made (`alignset cache
+  // verify`); an immutable file cannot change under the server.
+  if (config.quick_check && !config.read_only) impl->integrity->CheckInBackground("at start");
+  so.read_only = config.read_only;
+  if (!config.fill_from.empty()) so.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds);
+  so.max_cache_bytes = config.max_cache_bytes;
   auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
   if (!scheduler.ok()) return scheduler.status();
   impl->scheduler = std::move(scheduler).value();
@@ -171,12 +183,16 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   // balancers ask per service.
   impl->server->GetHealthCheckService()->SetServingStatus(true);
   impl->server->GetHealthCheckService()->SetServingStatus(v1::AlignSet::service_full_name(), true);
+  // The mode, for probes that ask: "alignset.read-only" is SERVING on a
+  // replica and NOT_SERVING on a writer ("alignset.writer" the other way).
+  impl->server->GetHealthCheckService()->SetServingStatus("alignset.read-only", config.read_only);
+  impl->server->GetHealthCheckService()->SetServingStatus("alignset.writer", !config.read_only);
   if (!config.metrics_listen.empty()) {
-    auto http = MetricsHttpServer::Start(config.metrics_listen, [service, m = &impl->metrics] {
+    auto http = MetricsHttpServer::Start(config.metrics_listen, token, [service, m = &impl->metrics] {
       v1::MetricsResponse values;
       service->FillMetrics(&values);
       return PrometheusText(values, *m);
-    });
+    }, &impl->metrics.requests_unauthenticated);
     if (!http.ok()) {
       impl->server->Shutdown();
       impl->scheduler->Shutdown();
@@ -198,9 +214,15 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
     spdlog::warn("--token-file without --tls-cert: the bearer token travels in clear text; "
                  "serve TLS or keep the listener on a trusted network");
   }
-  spdlog::info("listening on {} (port {}), db {}, {} worker(s) x {} thread(s), engine {}, max n {}, "
+  spdlog::info("listening on {} (port {}), db {}{}, {} worker(s) x {} thread(s), engine {}, max n {}, "
                "max iterations {}{}{}",
-               config.listen, impl->port, impl->db_path, config.workers,
+               config.listen, impl->port, impl->db_path,
+               config.read_only ? (config.fill_from.empty() ? " (read-only replica)"
+                                                            : " (read-only replica, fills from " + config.fill_from + ")")
+                                : (config.max_cache_bytes > 0
+                                       ? " (bounded to " + std::to_string(config.max_cache_bytes) + " bytes)"
+                                       : std::string()),
+               config.workers,
                so.threads_per_worker,
                EngineKindName(config.engine), config.max_n, config.max_iterations,
                config.tls_cert.empty() ? "" : ", TLS", token.empty() ? "" : ", bearer token");

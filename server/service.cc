@@ -8,20 +8,11 @@
 
 #include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
+#include "server/bearer_token.h"
 #include "server/log_text.h"
 #include "server/validation.h"
 
 namespace alignset::server {
-namespace {
-
-bool ConstantTimeEquals(const std::string& a, const std::string& b) {
-  if (a.size() != b.size()) return false;
-  unsigned char diff = 0;
-  for (size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ b[i]);
-  return diff == 0;
-}
-
-}  // namespace
 
 grpc::Status ToGrpc(const Status& s) {
   using C = grpc::StatusCode;
@@ -36,6 +27,7 @@ grpc::Status ToGrpc(const Status& s) {
     case Status::Code::kCancelled: code = C::CANCELLED; break;
     case Status::Code::kDataLoss: code = C::DATA_LOSS; break;
     case Status::Code::kInternal: code = C::INTERNAL; break;
+    case Status::Code::kFailedPrecondition: code = C::FAILED_PRECONDITION; break;
   }
   return grpc::Status(code, s.message());
 }
@@ -72,9 +64,7 @@ grpc::Status AlignSetService::Authorize(grpc::ServerContextBase* ctx) const {
   if (it == md.end()) {
     problem = "no authorization metadata";
   } else {
-    const std::string value(it->second.data(), it->second.size());
-    const std::string prefix = "Bearer ";
-    if (value.rfind(prefix, 0) != 0 || !ConstantTimeEquals(value.substr(prefix.size()), token_)) {
+    if (!BearerTokenMatches(std::string_view(it->second.data(), it->second.size()), token_)) {
       problem = "wrong token";
     }
   }

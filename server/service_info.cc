@@ -99,6 +99,14 @@ void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   out->set_waiting_calls(static_cast<uint32_t>(waiting_calls_.load()));
   out->set_rejected_waiting_limit(s.rejected_waiting_limit);
   out->set_database_integrity_errors(s.database_integrity_errors);
+  out->set_read_only(metrics_->read_only.load());
+  out->set_replica_misses(metrics_->replica_misses.load());
+  out->set_sets_filled(metrics_->sets_filled.load());
+  out->set_max_cache_bytes(metrics_->max_cache_bytes);
+  out->set_cache_evictions(metrics_->cache_evictions.load());
+  out->set_cache_evicted_bytes(metrics_->cache_evicted_bytes.load());
+  out->set_cache_file_bytes(metrics_->cache_file_bytes.load());
+  out->set_cache_vacuums(metrics_->cache_vacuums.load());
 }
 
 grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,

@@ -23,6 +23,12 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                                          grpc::ServerWriter<v1::PrecomputeProgress>* writer) {
   if (auto a = Authorize(ctx); !a.ok()) return a;
   metrics_->requests_precompute.fetch_add(1, std::memory_order_relaxed);
+  if (config_.read_only) {
+    // Precompute exists to fill the file, which a replica never writes.
+    return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                        "this server is a read-only replica (--read-only) of " + db_path_ +
+                            ": precompute on the writer and ship its merged file");
+  }
   // A precompute stream holds a thread for as long as it runs: their number
   // is capped instead.
   struct StreamSlot {

@@ -104,7 +104,8 @@ std::map<std::string, double> ParsePrometheus(const std::string& text) {
   return out;
 }
 
-HttpReply HttpRequest(int port, const std::string& method, const std::string& path) {
+HttpReply HttpRequest(int port, const std::string& method, const std::string& path,
+                      const std::string& extra_headers) {
   HttpReply reply;
   const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd < 0) return reply;
@@ -116,7 +117,8 @@ HttpReply HttpRequest(int port, const std::string& method, const std::string& pa
   addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   std::string raw;
   if (::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0) {
-    const std::string request = method + " " + path + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+    const std::string request =
+        method + " " + path + " HTTP/1.0\r\nHost: 127.0.0.1\r\n" + extra_headers + "\r\n";
     if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) == static_cast<ssize_t>(request.size())) {
       char buf[4096];
       for (ssize_t got; (got = ::recv(fd, buf, sizeof(buf), 0)) > 0;) raw.append(buf, static_cast<size_t>(got));

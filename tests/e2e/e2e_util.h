@@ -52,6 +52,8 @@ struct HttpReply {
   std::string headers;
   std::string body;
 };
-HttpReply HttpRequest(int port, const std::string& method, const std::string& path);
+// `extra_headers`: more header lines, each ending in "\r\n".
+HttpReply HttpRequest(int port, const std::string& method, const std::string& path,
+                      const std::string& extra_headers = "");
 
 }  // namespace alignset::e2e

@@ -1,0 +1,81 @@
+#include "server/fill_client.h"
+
+#include <grpcpp/grpcpp.h>
+
+#include <cstring>
+#include <memory>
+
+#include "alignset/v1/alignset.grpc.pb.h"
+#include "core/align/canonical.h"
+#include "server/set_lru.h"
+
+namespace alignset::server {
+namespace {
+
+Status FromGrpc(const grpc::Status& s, const std::string& what) {
+  const std::string m = what + ": " + s.error_message();
+  switch (s.error_code()) {
+    case grpc::StatusCode::NOT_FOUND: return Status::NotFound(m);
+    case grpc::StatusCode::INVALID_ARGUMENT: return Status::InvalidArgument(m);
+    case grpc::StatusCode::RESOURCE_EXHAUSTED: return Status::ResourceExhausted(m);
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return Status::DeadlineExceeded(m);
+    case grpc::StatusCode::CANCELLED: return Status::Cancelled(m);
+    case grpc::StatusCode::DATA_LOSS: return Status::DataLoss(m);
+    case grpc::StatusCode::FAILED_PRECONDITION: return Status::FailedPrecondition(m);
+    default: return Status::Unavailable(m);  // the writer is down, refused us, or broke
+  }
+}
+
+}  // namespace
+
+FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds) {
+  auto stub = std::shared_ptr<v1::AlignSet::Stub>(
+      v1::AlignSet::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())));
+  return [stub, address, token, timeout_seconds](const storage::SetKey& key) -> StatusOr<storage::SetRecord> {
+    const std::string name = KeyString(key);
+    v1::AlignedSetRequest req;
+    req.set_n(key.n);
+    req.add_directions_deg(Phi1Degrees(key.dirs));
+    if (key.dirs.count == 2) req.add_directions_deg(Phi2Degrees(key.dirs));
+    req.set_steps_per_degree(key.dirs.count == 1 && key.dirs.phi1_quarter != 0 ? 4 : 1);
+    req.set_realization(key.realization);
+    grpc::ClientContext ctx;
+    ctx.set_deadline(std::chrono::system_clock::now() +
+                     std::chrono::milliseconds(static_cast<int64_t>(timeout_seconds * 1000)));
+    if (!token.empty()) ctx.AddMetadata("authorization", "Bearer " + token);
+    v1::AlignedSetResponse resp;
+    const grpc::Status s = stub->GetAlignedSet(&ctx, req, &resp);
+    if (!s.ok()) return FromGrpc(s, "the writer " + address + " for " + name);
+    const v1::SetMetadata& md = resp.metadata();
+    const v1::CanonicalKey& k = md.key();
+    if (k.profile() != key.profile) {
+      return Status::FailedPrecondition("the writer " + address + " serves profile " + k.profile() + ", this replica " +
+                                        key.profile + " (other optimization settings): not used for " + name);
+    }
+    if (k.n() != key.n || k.text() != name || md.swapped() || md.inverted() || md.inverted_y()) {
+      return Status::Internal("the writer " + address + " answered " + k.text() + " for " + name);
+    }
+    const std::string& bytes = resp.points();
+    if (resp.n() != key.n || bytes.size() != size_t{16} * key.n) {
+      return Status::Internal("the writer " + address + " sent " + std::to_string(bytes.size()) +
+                              " bytes of points for " + name);
+    }
+    storage::SetRecord r;
+    r.key = key;
+    r.points.resize(key.n);
+    static_assert(sizeof(double) == 8);
+    for (uint32_t i = 0; i < key.n; ++i) {  // little-endian float64 pairs, as on this host
+      std::memcpy(&r.points[i].x, bytes.data() + 16 * i, 8);
+      std::memcpy(&r.points[i].y, bytes.data() + 16 * i + 8, 8);
+    }
+    r.loss.total = md.loss().total();
+    r.loss.spectrum = md.loss().spectrum();
+    r.loss.sw = md.loss().sliced_wasserstein();
+    r.iterations = md.iterations();
+    r.optimize_seconds = md.optimize_seconds();
+    r.engine = md.engine();
+    return r;
+  };
+}
+
+}  // namespace alignset::server

@@ -1,0 +1,22 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "core/util/status.h"
+#include "storage/set_cache.h"
+
+namespace alignset::server {
+
+// A read-only replica's --fill-from: asks the writer at `address` for a
+// canonical set (GetAlignedSet for the key's own canonical directions, so
+// the answer needs no alignment) and checks that the writer served exactly
+// that key: the same N, directions, realization and profile (a writer with
+// other optimization settings has another profile: FAILED_PRECONDITION), no
+// swap or inversion, and N points. `token` (may be empty) is sent as the
+// bearer token; `timeout_seconds` bounds one call (the writer may have to
+// optimize the set first).
+using FillFunction = std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)>;
+FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds);
+
+}  // namespace alignset::server

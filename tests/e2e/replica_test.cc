@@ -1,0 +1,298 @@
+// Serving a render farm (issue 29): read-only replicas over a shipped cache
+// file, a writer with a bounded file, and the metrics endpoint behind the
+// bearer token. Every test runs real alignset-server processes on loopback.
+#include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "alignset/v1/alignset.grpc.pb.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "tests/e2e/e2e_util.h"
+#include "tests/e2e/server_process.h"
+
+namespace alignset::e2e {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string> kFast = {"--max-iterations", "30", "--workers", "1",
+                                        "--threads-per-worker", "1", "--max-n", "4096"};
+
+std::vector<std::string> With(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+std::string FileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// What a directory holds: names, sizes and modification times.
+std::string Listing(const std::string& dir) {
+  std::vector<std::string> rows;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    struct stat st {};
+    ::stat(e.path().c_str(), &st);
+    rows.push_back(e.path().filename().string() + " " + std::to_string(st.st_size) + " " +
+                   std::to_string(st.st_mtim.tv_sec) + "." + std::to_string(st.st_mtim.tv_nsec));
+  }
+  std::sort(rows.begin(), rows.end());
+  std::string out;
+  for (const auto& r : rows) out += r + "\n";
+  return out;
+}
+
+grpc::Status Get(v1::AlignSet::Stub* stub, uint32_t n, std::vector<double> dirs, v1::AlignedSetResponse* resp,
+                 uint32_t realization = 0) {
+  grpc::ClientContext ctx;
+  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+  v1::AlignedSetRequest req = SetRequest(n, std::move(dirs));
+  req.set_realization(realization);
+  return stub->GetAlignedSet(&ctx, req, resp);
+}
+
+// A writer fills `dir`/cache.sqlite with the N = 64 one-direction space
+// (46 sets) plus one two-direction set, and stops (so the file is whole:
+// its WAL checkpointed into it and removed, as a shipped file is).
+void MakeShippedCache(const std::string& dir) {
+  ServerProcess writer(dir, kFast);
+  ASSERT_EQ(writer.error(), "");
+  auto stub = OwnStub(writer.address());
+  grpc::ClientContext ctx;
+  v1::PrecomputeRequest req;
+  req.add_n(64);
+  req.set_space(v1::ONE_DIRECTION);
+  req.set_steps_per_degree(1);
+  auto reader = stub->Precompute(&ctx, req);
+  v1::PrecomputeProgress p;
+  while (reader->Read(&p)) {
+  }
+  ASSERT_TRUE(reader->Finish().ok());
+  v1::AlignedSetResponse resp;
+  ASSERT_TRUE(Get(stub.get(), 64, {20, 110}, &resp).ok());
+  ASSERT_EQ(writer.Stop(SIGTERM), 0);
+  ASSERT_FALSE(fs::exists(dir + "/cache.sqlite-wal"));
+}
+
+TEST(Replica, RefusesEveryWritePathAndNeverModifiesItsFile) {
+  TempDir shipped, replica_dir;
+  MakeShippedCache(shipped.path());
+  const std::string file = shipped.path() + "/cache.sqlite";
+  const std::string before = FileBytes(file);
+  const std::string listing = Listing(shipped.path());
+  ASSERT_GT(before.size(), 0u);
+  {
+    ServerProcess replica(replica_dir.path(), With(kFast, {"--read-only", "--db", file}));
+    ASSERT_EQ(replica.error(), "");
+    auto stub = OwnStub(replica.address());
+    v1::AlignedSetResponse resp;
+    // A stored set is served, from the file.
+    ASSERT_TRUE(Get(stub.get(), 64, {30}, &resp).ok());
+    EXPECT_TRUE(resp.metadata().from_cache());
+    // A miss (another N, a realization never made, a pair never asked) is
+    // NOT_FOUND naming the key; nothing is optimized.
+    for (auto [n, dirs, r] : {std::tuple{128u, std::vector<double>{30}, 0u}, std::tuple{64u, std::vector<double>{30}, 5u},
+                              std::tuple{64u, std::vector<double>{20, 120}, 0u}}) {
+      const grpc::Status s = Get(stub.get(), n, dirs, &resp, r);
+      EXPECT_EQ(s.error_code(), grpc::StatusCode::NOT_FOUND) << s.error_message();
+      EXPECT_NE(s.error_message().find("n=" + std::to_string(n)), std::string::npos) << s.error_message();
+      EXPECT_NE(s.error_message().find("read-only replica"), std::string::npos) << s.error_message();
+    }
+    {  // WatchAlignedSet of a miss
+      grpc::ClientContext ctx;
+      auto reader = stub->WatchAlignedSet(&ctx, SetRequest(256, {40}));
+      v1::WatchEvent e;
+      while (reader->Read(&e)) {
+      }
+      const grpc::Status s = reader->Finish();
+      EXPECT_EQ(s.error_code(), grpc::StatusCode::NOT_FOUND) << s.error_message();
+    }
+    {  // GetAlignedSets: the stored item is served, the missing one NOT_FOUND
+      grpc::ClientContext ctx;
+      v1::AlignedSetsRequest req;
+      *req.add_items() = SetRequest(64, {10});
+      *req.add_items() = SetRequest(512, {10});
+      v1::AlignedSetsResponse resp2;
+      ASSERT_TRUE(stub->GetAlignedSets(&ctx, req, &resp2).ok());
+      ASSERT_EQ(resp2.items_size(), 2);
+      EXPECT_EQ(resp2.items(0).code(), 0);
+      EXPECT_EQ(resp2.items(1).code(), static_cast<int>(grpc::StatusCode::NOT_FOUND));
+    }
+    {  // Precompute: refused as a whole
+      grpc::ClientContext ctx;
+      v1::PrecomputeRequest req;
+      req.add_n(128);
+      req.set_space(v1::ONE_DIRECTION);
+      auto reader = stub->Precompute(&ctx, req);
+      v1::PrecomputeProgress p;
+      while (reader->Read(&p)) {
+      }
+      const grpc::Status s = reader->Finish();
+      EXPECT_EQ(s.error_code(), grpc::StatusCode::FAILED_PRECONDITION) << s.error_message();
+      EXPECT_NE(s.error_message().find("read-only"), std::string::npos);
+    }
+    // The mode, in metrics and in health.
+    const v1::MetricsResponse m = GetMetrics(replica.address());
+    EXPECT_TRUE(m.read_only());
+    EXPECT_EQ(m.replica_misses(), 5u);  // 3 gets, the watch, the batch item
+    EXPECT_EQ(m.optimizations_started(), 0u);
+    auto health = grpc::health::v1::Health::NewStub(OwnChannel(replica.address()));
+    for (auto [service, serving] : {std::pair{"alignset.read-only", true}, std::pair{"alignset.writer", false}}) {
+      grpc::ClientContext ctx;
+      grpc::health::v1::HealthCheckRequest req;
+      req.set_service(service);
+      grpc::health::v1::HealthCheckResponse resp3;
+      ASSERT_TRUE(health->Check(&ctx, req, &resp3).ok()) << service;
+      EXPECT_EQ(resp3.status(), serving ? grpc::health::v1::HealthCheckResponse::SERVING
+                                        : grpc::health::v1::HealthCheckResponse::NOT_SERVING)
+          << service;
+    }
+    EXPECT_EQ(replica.Stop(SIGTERM), 0);
+  }
+  // Byte for byte the same file, and no -wal / -shm (or anything else) made beside it.
+  EXPECT_TRUE(FileBytes(file) == before) << "the replica changed its cache file";
+  EXPECT_EQ(Listing(shipped.path()), listing);
+}
+
+TEST(Replica, TwoReplicasServeIdenticalBytesForEveryKey) {
+  TempDir shipped, a_dir, b_dir;
+  MakeShippedCache(shipped.path());
+  const std::string file = shipped.path() + "/cache.sqlite";
+  ServerProcess a(a_dir.path(), With(kFast, {"--read-only", "--db", file}));
+  ServerProcess b(b_dir.path(), With(kFast, {"--read-only", "--db", file}));
+  ASSERT_EQ(a.error(), "");
+  ASSERT_EQ(b.error(), "");
+  auto sa = OwnStub(a.address());
+  auto sb = OwnStub(b.address());
+  // Every whole degree maps onto one of the 46 stored keys (some swapped or
+  // mirrored): all 180 directions, plus the stored pair.
+  std::set<std::string> keys;
+  for (int d = 0; d <= 180; ++d) {
+    const std::vector<double> dirs = d == 180 ? std::vector<double>{20, 110} : std::vector<double>{double(d)};
+    v1::AlignedSetResponse ra, rb;
+    ASSERT_TRUE(Get(sa.get(), 64, dirs, &ra).ok()) << d;
+    ASSERT_TRUE(Get(sb.get(), 64, dirs, &rb).ok()) << d;
+    EXPECT_TRUE(ra.metadata().from_cache());
+    EXPECT_EQ(ra.metadata().key().text(), rb.metadata().key().text());
+    EXPECT_TRUE(ra.points() == rb.points()) << "direction " << d;
+    EXPECT_EQ(ra.points().size(), 64u * 16u);
+    keys.insert(ra.metadata().key().text());
+  }
+  EXPECT_EQ(keys.size(), 47u);
+}
+
+TEST(Replica, FillFromAWriterKeepsTheSetInMemoryOnly) {
+  TempDir shipped, writer_dir, replica_dir;
+  MakeShippedCache(shipped.path());
+  const std::string file = shipped.path() + "/cache.sqlite";
+  const std::string before = FileBytes(file);
+  ServerProcess writer(writer_dir.path(), kFast);
+  ASSERT_EQ(writer.error(), "");
+  ServerProcess replica(replica_dir.path(),
+                        With(kFast, {"--read-only", "--db", file, "--fill-from", writer.address()}));
+  ASSERT_EQ(replica.error(), "");
+  auto rs = OwnStub(replica.address());
+  auto ws = OwnStub(writer.address());
+  for (const std::vector<double>& dirs : {std::vector<double>{77.25}, std::vector<double>{15, 100}}) {
+    v1::AlignedSetResponse from_replica, from_writer;
+    ASSERT_TRUE(Get(rs.get(), 128, dirs, &from_replica).ok());
+    EXPECT_TRUE(from_replica.metadata().not_stored());  // in memory only
+    ASSERT_TRUE(Get(ws.get(), 128, dirs, &from_writer).ok());
+    EXPECT_TRUE(from_writer.metadata().from_cache());  // the writer stored what it made for the replica
+    EXPECT_TRUE(from_replica.points() == from_writer.points());
+    v1::AlignedSetResponse again;
+    ASSERT_TRUE(Get(rs.get(), 128, dirs, &again).ok());
+    EXPECT_TRUE(again.points() == from_replica.points());
+  }
+  const v1::MetricsResponse m = GetMetrics(replica.address());
+  EXPECT_EQ(m.sets_filled(), 2u);
+  EXPECT_EQ(m.optimizations_started(), 0u);
+  EXPECT_EQ(replica.Stop(SIGTERM), 0);
+  EXPECT_TRUE(FileBytes(file) == before);
+}
+
+TEST(Replica, ConfigurationMistakesAreUsageErrors) {
+  const std::string bin = ServerBinary();
+  for (const std::string flags : {"--fill-from 127.0.0.1:1", "--read-only --max-cache-bytes 10000000",
+                                  "--max-cache-bytes 1000", "--read-only=maybe",
+                                  "--metrics-listen 127.0.0.1:70000"}) {
+    const CommandResult r = RunCommand(bin + " " + flags + " --db /nonexistent/x.sqlite");
+    EXPECT_EQ(r.exit_code, 2) << flags << ": " << r.output;
+  }
+  // A replica of a file that is not there does not start (nothing is created).
+  TempDir dir;
+  const CommandResult r = RunCommand(bin + " --read-only --listen 127.0.0.1:0 --db " + dir.path() + "/none.sqlite");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir.path() + "/none.sqlite"));
+}
+
+// --max-cache-bytes: the file stays under the bound, the least recently
+// served sets go first, and the evictions show in metrics.
+TEST(BoundedCache, EvictionKeepsTheFileUnderTheBoundAndTheMostRecentlyServedSets) {
+  TempDir dir;
+  const int64_t bound = 256 * 1024;  // about 11 sets of N = 1024 (16 KiB each, 5 pages)
+  ServerProcess server(dir.path(), With(kFast, {"--max-cache-bytes", std::to_string(bound),
+                                                "--metrics-listen", "127.0.0.1:0"}));
+  ASSERT_EQ(server.error(), "");
+  auto stub = OwnStub(server.address());
+  v1::AlignedSetResponse resp;
+  ASSERT_TRUE(Get(stub.get(), 1024, {0}, &resp).ok());  // the set kept hot throughout
+  const std::string hot = resp.points();
+  for (uint32_t r = 1; r <= 40; ++r) {
+    ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, r).ok()) << r;
+    EXPECT_FALSE(resp.metadata().not_stored()) << r;
+    ASSERT_TRUE(Get(stub.get(), 1024, {0}, &resp).ok());  // served again: the most recent
+    EXPECT_TRUE(resp.points() == hot);
+    const v1::MetricsResponse m = GetMetrics(server.address());
+    EXPECT_LE(m.cache_file_bytes(), bound) << "after set " << r;
+    EXPECT_LE(static_cast<int64_t>(fs::file_size(server.db_path())), bound) << "after set " << r;
+  }
+  const v1::MetricsResponse m = GetMetrics(server.address());
+  EXPECT_GE(m.cache_evictions(), 25u);
+  EXPECT_EQ(m.max_cache_bytes(), bound);
+  EXPECT_GT(m.cache_evicted_bytes(), 0u);
+  const auto prom = ParsePrometheus(HttpRequest(server.metrics_port(), "GET", "/metrics").body);
+  EXPECT_EQ(prom.at("alignset_cache_evictions_total"), static_cast<double>(m.cache_evictions()));
+  // The hot set was never evicted; the first of the realizations was.
+  ASSERT_TRUE(Get(stub.get(), 1024, {0}, &resp).ok());
+  EXPECT_TRUE(resp.metadata().from_cache());
+  ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, 1).ok());
+  EXPECT_FALSE(resp.metadata().from_cache());
+  // Stopped (WAL checkpointed into the file, free pages returned): still under.
+  ASSERT_EQ(server.Stop(SIGTERM), 0);
+  EXPECT_LE(static_cast<int64_t>(fs::file_size(server.db_path())), bound);
+  const CommandResult verify = RunCommand(std::string(ALIGNSET_CLI_PATH) + " cache verify --db " + server.db_path());
+  EXPECT_EQ(verify.exit_code, 0) << verify.output;
+}
+
+TEST(MetricsAuth, TheEndpointRefusesARequestWithoutTheTokenWhenOneIsSet) {
+  TempDir dir;
+  const std::string token_file = dir.path() + "/token";
+  std::ofstream(token_file) << "s3cret-token\n";
+  ServerProcess server(dir.path(), With(kFast, {"--token-file", token_file, "--metrics-listen", "127.0.0.1:0"}));
+  ASSERT_EQ(server.error(), "");
+  const HttpReply none = HttpRequest(server.metrics_port(), "GET", "/metrics");
+  EXPECT_EQ(none.status, 401) << none.headers;
+  EXPECT_NE(none.headers.find("WWW-Authenticate: Bearer"), std::string::npos) << none.headers;
+  EXPECT_EQ(none.body.find("alignset_"), std::string::npos);
+  const HttpReply wrong = HttpRequest(server.metrics_port(), "GET", "/metrics", "Authorization: Bearer nope\r\n");
+  EXPECT_EQ(wrong.status, 401);
+  const HttpReply other_path = HttpRequest(server.metrics_port(), "GET", "/", "");
+  EXPECT_EQ(other_path.status, 401);
+  const HttpReply right =
+      HttpRequest(server.metrics_port(), "GET", "/metrics", "Authorization: Bearer s3cret-token\r\n");
+  ASSERT_EQ(right.status, 200) << right.headers;
+  const auto values = ParsePrometheus(right.body);
+  EXPECT_EQ(values.at("alignset_requests_unauthenticated_total"), 3.0);
+  EXPECT_EQ(values.at("alignset_read_only"), 0.0);
+}
+
+}  // namespace
+}  // namespace alignset::e2e
