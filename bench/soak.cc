@@ -522,20 +522,18 @@ int Soak::Run() {
   r << buf;
   r << "| server threads after warm-up: min, max | " << tmin << ", " << tmax << " |\n\n";
   r << "## Cache-hit latency (N = 1024: 2 renderer clients with bursts of 16 GetAlignedSet calls, one with GetAlignedSets batches of 16)\n\n";
-  r << "| server | hits | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|\n";
-  for (int l = 0; l < 2; ++l) {
-    std::snprintf(buf, sizeof buf, "| %s | %zu | %.3f | %.3f | %.3f |\n", l == 0 ? "before SIGKILL" : "after restart",
-                  hit_latency_[l].size(), 1e3 * Percentile(hit_latency_[l], 0.5),
-                  1e3 * Percentile(hit_latency_[l], 0.99), 1e3 * Percentile(hit_latency_[l], 1.0));
-    r << buf;
-  }
-  r << "\n| server | batches of 16 hits (GetAlignedSets) | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|\n";
-  for (int l = 0; l < 2; ++l) {
-    std::snprintf(buf, sizeof buf, "| %s | %zu | %.3f | %.3f | %.3f |\n", l == 0 ? "before SIGKILL" : "after restart",
-                  batch_latency_[l].size(), 1e3 * Percentile(batch_latency_[l], 0.5),
-                  1e3 * Percentile(batch_latency_[l], 0.99), 1e3 * Percentile(batch_latency_[l], 1.0));
-    r << buf;
-  }
+  auto latency_table = [&](const char* what, const std::vector<double>* lives) {
+    r << "| server | " << what << " | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|\n";
+    for (int l = 0; l < 2; ++l) {
+      std::snprintf(buf, sizeof buf, "| %s | %zu | %.3f | %.3f | %.3f |\n", l == 0 ? "before SIGKILL" : "after restart",
+                    lives[l].size(), 1e3 * Percentile(lives[l], 0.5), 1e3 * Percentile(lives[l], 0.99),
+                    1e3 * Percentile(lives[l], 1.0));
+      r << buf;
+    }
+  };
+  latency_table("hits (GetAlignedSet)", hit_latency_);
+  r << "\n";
+  latency_table("batches of 16 hits (GetAlignedSets)", batch_latency_);
   r << "\n## Calls by client and status code\n\n| client | code | calls |\n|---|---|---:|\n";
   for (const auto& [client, m] : codes_) {
     for (const auto& [code, n] : m) r << "| " << client << " | " << code << " | " << n << " |\n";

@@ -1,5 +1,7 @@
 #include "tests/e2e/e2e_util.h"
 
+#include <gtest/gtest.h>
+
 #include <arpa/inet.h>
 #include <dirent.h>
 #include <netinet/in.h>
@@ -82,6 +84,22 @@ ProcessFigures ReadProcessFigures(pid_t pid) {
     in.ignore(1 << 20, '\n');
   }
   return f;
+}
+
+// Precomputes the 46 one-direction keys at N = 64 (a few rows per 4 KiB
+// page: the table spans several leaves).
+void PrecomputeOneDirection(const std::string& address) {
+  auto stub = OwnStub(address);
+  grpc::ClientContext ctx;
+  v1::PrecomputeRequest req;
+  req.add_n(64);
+  req.set_space(v1::ONE_DIRECTION);
+  auto stream = stub->Precompute(&ctx, req);
+  v1::PrecomputeProgress p;
+  while (stream->Read(&p)) {
+  }
+  ASSERT_TRUE(stream->Finish().ok());
+  ASSERT_EQ(p.done(), 46u);
 }
 
 std::string ReadText(const std::string& path) {

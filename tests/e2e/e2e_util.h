@@ -44,6 +44,10 @@ std::string ReadText(const std::string& path);
 // -> value, for every sample line.
 std::map<std::string, double> ParsePrometheus(const std::string& text);
 
+// Precomputes the 46 one-direction keys at N = 64 (fails the test unless
+// all 46 are done).
+void PrecomputeOneDirection(const std::string& address);
+
 // One HTTP/1.0 request on a plain socket to 127.0.0.1:`port` (no curl
 // needed on the test machine): the status code (0 when nothing came back),
 // the header block and the body.

@@ -208,22 +208,6 @@ TEST_F(HardeningTest, SetServedButNotStoredIsReportedInTheResponseMetricsAndLog)
 
 // ------------------------------------------------------------- item 4
 
-// Precomputes the 46 one-direction keys at N = 64 (a few rows per 4 KiB
-// page: the table spans several leaves).
-void PrecomputeOneDirection(const std::string& address) {
-  auto stub = OwnStub(address);
-  grpc::ClientContext ctx;
-  v1::PrecomputeRequest req;
-  req.add_n(64);
-  req.set_space(v1::ONE_DIRECTION);
-  auto stream = stub->Precompute(&ctx, req);
-  v1::PrecomputeProgress p;
-  while (stream->Read(&p)) {
-  }
-  ASSERT_TRUE(stream->Finish().ok());
-  ASSERT_EQ(p.done(), 46u);
-}
-
 TEST_F(HardeningTest, DamagedPagesAreReportedListedByVerifyAndRecovered) {
   StartServer(kFast);
   PrecomputeOneDirection(server_->address());

@@ -27,13 +27,6 @@ std::vector<std::string> With(std::vector<std::string> a, const std::vector<std:
   return a;
 }
 
-std::string FileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // What a directory holds: names, sizes and modification times.
 std::string Listing(const std::string& dir) {
   std::vector<std::string> rows;
@@ -64,17 +57,8 @@ grpc::Status Get(v1::AlignSet::Stub* stub, uint32_t n, std::vector<double> dirs,
 void MakeShippedCache(const std::string& dir) {
   ServerProcess writer(dir, kFast);
   ASSERT_EQ(writer.error(), "");
+  PrecomputeOneDirection(writer.address());
   auto stub = OwnStub(writer.address());
-  grpc::ClientContext ctx;
-  v1::PrecomputeRequest req;
-  req.add_n(64);
-  req.set_space(v1::ONE_DIRECTION);
-  req.set_steps_per_degree(1);
-  auto reader = stub->Precompute(&ctx, req);
-  v1::PrecomputeProgress p;
-  while (reader->Read(&p)) {
-  }
-  ASSERT_TRUE(reader->Finish().ok());
   v1::AlignedSetResponse resp;
   ASSERT_TRUE(Get(stub.get(), 64, {20, 110}, &resp).ok());
   ASSERT_EQ(writer.Stop(SIGTERM), 0);
@@ -85,7 +69,7 @@ TEST(Replica, RefusesEveryWritePathAndNeverModifiesItsFile) {
   TempDir shipped, replica_dir;
   MakeShippedCache(shipped.path());
   const std::string file = shipped.path() + "/cache.sqlite";
-  const std::string before = FileBytes(file);
+  const std::string before = ReadText(file);
   const std::string listing = Listing(shipped.path());
   ASSERT_GT(before.size(), 0u);
   {
@@ -157,7 +141,7 @@ TEST(Replica, RefusesEveryWritePathAndNeverModifiesItsFile) {
     EXPECT_EQ(replica.Stop(SIGTERM), 0);
   }
   // Byte for byte the same file, and no -wal / -shm (or anything else) made beside it.
-  EXPECT_TRUE(FileBytes(file) == before) << "the replica changed its cache file";
+  EXPECT_TRUE(ReadText(file) == before) << "the replica changed its cache file";
   EXPECT_EQ(Listing(shipped.path()), listing);
 }
 
@@ -192,7 +176,7 @@ TEST(Replica, FillFromAWriterKeepsTheSetInMemoryOnly) {
   TempDir shipped, writer_dir, replica_dir;
   MakeShippedCache(shipped.path());
   const std::string file = shipped.path() + "/cache.sqlite";
-  const std::string before = FileBytes(file);
+  const std::string before = ReadText(file);
   ServerProcess writer(writer_dir.path(), kFast);
   ASSERT_EQ(writer.error(), "");
   ServerProcess replica(replica_dir.path(),
@@ -215,7 +199,7 @@ TEST(Replica, FillFromAWriterKeepsTheSetInMemoryOnly) {
   EXPECT_EQ(m.sets_filled(), 2u);
   EXPECT_EQ(m.optimizations_started(), 0u);
   EXPECT_EQ(replica.Stop(SIGTERM), 0);
-  EXPECT_TRUE(FileBytes(file) == before);
+  EXPECT_TRUE(ReadText(file) == before);
 }
 
 TEST(Replica, ConfigurationMistakesAreUsageErrors) {
