@@ -83,7 +83,7 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::max_batch_calls, "max-batch-calls", 1, 1024)},
       {"quick-check", "0|1   check the cache file for damaged pages at start (default 1)",
        IntFlag(&ServerConfig::quick_check, "quick-check", 0, 1)},
-      {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; default off)",
+      {"metrics-listen", "ADDR  serve Prometheus metrics on ADDR (HOST:PORT, GET /metrics; with --token-file\n                     it takes the same bearer token; default off)",
        StringFlag(&ServerConfig::metrics_listen)},
       {"read-only", "       serve the --db file read-only and immutable (a replica of a shipped cache):\n"
                     "                     never written; a miss is NOT_FOUND naming the key",
