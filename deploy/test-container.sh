@@ -323,7 +323,8 @@ for i in 0 1; do
     || { cat "$tmp/list$i.txt" "$tmp/shard$i.log"; die "shard $i holds: $shard_total"; }
 done
 log "shard.sh wrote shards 0/2 and 1/2 (N=16, 1dir), 23 sets each"
-crun --volume "$data:/var/lib/alignset" "${job_env[@]}" "$ctr" -- /bin/sh /scripts/merge.sh \
+crun --volume "$data:/var/lib/alignset" "${job_env[@]}" --env ALIGNSET_PUBLISH_DIR=/shards/published \
+  "$ctr" -- /bin/sh /scripts/merge.sh \
   > "$tmp/merge.log" 2>&1 || { cat "$tmp/merge.log"; die "merge.sh failed"; }
 crun --volume "$data:/var/lib/alignset" "$ctr" -- \
   alignset cache list --db /var/lib/alignset/alignset.sqlite > "$tmp/list.txt" 2>&1 \
@@ -336,4 +337,78 @@ crun --volume "$data:/var/lib/alignset" "$ctr" -- \
   alignset cache verify --db /var/lib/alignset/alignset.sqlite > "$tmp/verify.txt" 2>&1 \
   || { cat "$tmp/verify.txt"; die "cache verify failed after the merge"; }
 log "merge.sh: $merged_total; cache verify ok"
+
+# --- 6. two read-only replicas over the published file (deploy/k8s/replicas) -------------
+# As the replica Deployment runs them: ALIGNSET_READ_ONLY=1, the published merged file on a
+# read-only mount. Both must serve every key with identical bytes, refuse a miss with
+# NOT_FOUND naming the key, and leave the file (and its directory) exactly as they found it.
+pub="$tmp/shards/published"
+[ -s "$pub/alignset.sqlite" ] || { cat "$tmp/merge.log"; die "merge.sh published no file for the replicas"; }
+sum_before="$(sha256sum "$pub/alignset.sqlite" | cut -d' ' -f1)"
+ls_before="$(ls -la --time-style=full-iso "$pub")"
+replica_pids=(); replica_inner=(); replica_addr=()
+for r in 0 1; do
+  rport="$("$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
+  replica_addr[$r]="127.0.0.1:$rport"
+  crun --env ALIGNSET_LISTEN="127.0.0.1:$rport" --env ALIGNSET_READ_ONLY=1 \
+    --env ALIGNSET_DB=/var/lib/alignset-shipped/alignset.sqlite \
+    --volume "$pub:/var/lib/alignset-shipped:ro" "$ctr" -- \
+    alignset-server --workers 1 --threads-per-worker 1 --max-iterations "$ITERS" > "$tmp/replica$r.log" 2>&1 &
+  replica_pids[$r]=$!
+done
+stop_replicas() {
+  local r p
+  for r in 0 1; do
+    p="${replica_inner[$r]:-}"
+    if [ -n "$p" ]; then kill -TERM "$p" 2>/dev/null || true; fi
+  done
+  for r in 0 1; do
+    p="${replica_pids[$r]:-}"
+    if [ -n "$p" ]; then wait "$p" 2>/dev/null || true; fi
+  done
+  replica_pids=(); replica_inner=()
+}
+trap 'stop_replicas; cleanup' EXIT
+for r in 0 1; do
+  for _ in $(seq 1 40); do replica_inner[$r]="$(descendant "${replica_pids[$r]}" alignset-server)" && break; sleep 0.25; done
+  [ -n "${replica_inner[$r]}" ] || { cat "$tmp/replica$r.log"; die "replica $r process not found"; }
+  state=""
+  for _ in $(seq 1 60); do
+    kill -0 "${replica_pids[$r]}" 2>/dev/null || { cat "$tmp/replica$r.log"; die "replica $r exited early"; }
+    if state="$("$PROBE" --server "${replica_addr[$r]}" --timeout 2 2>&1)" && [ "$state" = SERVING ]; then break; fi
+    sleep 0.5
+  done
+  [ "$state" = SERVING ] || { cat "$tmp/replica$r.log"; die "replica $r never SERVING: $state"; }
+done
+log "two read-only replicas SERVING on ${replica_addr[0]} and ${replica_addr[1]}"
+# Every key: the 46 one-direction sets at N=16 as one array, the N=64 set, and a mirrored one.
+for r in 0 1; do
+  "$HOST_CLI" get --n 16 --space 1dir --out "$tmp/space$r.npy" --server "${replica_addr[$r]}" > "$tmp/rget$r.txt" 2>&1 \
+    || { cat "$tmp/rget$r.txt" "$tmp/replica$r.log"; die "replica $r: get --space 1dir failed"; }
+  for d in 30 120; do
+    "$HOST_CLI" get --n 64 --dir "$d" --out "$tmp/set$d-$r.npy" --server "${replica_addr[$r]}" >> "$tmp/rget$r.txt" 2>&1 \
+      || { cat "$tmp/rget$r.txt"; die "replica $r: get --n 64 --dir $d failed"; }
+  done
+done
+for f in space set30- set120-; do
+  cmp "$tmp/${f}0.npy" "$tmp/${f}1.npy" || die "the replicas served different bytes ($f)"
+done
+"$PY" - "$tmp/space0.npy" <<'PYEOF' || die "the replica's space is not 46 sets of 16 points"
+import sys, numpy as np
+a = np.load(sys.argv[1])
+assert a.shape == (46, 16, 2), a.shape
+assert ((a >= 0) & (a < 1)).all()
+PYEOF
+log "both replicas served the 46 + 1 keys with identical bytes"
+set +e
+"$HOST_CLI" get --n 256 --dir 30 --out "$tmp/miss.txt" --server "${replica_addr[0]}" > "$tmp/miss.log" 2>&1
+miss_rc=$?
+set -e
+[ "$miss_rc" -ne 0 ] && grep -q "NOT_FOUND" "$tmp/miss.log" && grep -q "n=256" "$tmp/miss.log" \
+  || { cat "$tmp/miss.log"; die "a replica's miss was not NOT_FOUND naming the key (exit $miss_rc)"; }
+log "a miss on a replica: $(head -n 1 "$tmp/miss.log")"
+stop_replicas
+[ "$(sha256sum "$pub/alignset.sqlite" | cut -d' ' -f1)" = "$sum_before" ] || die "a replica changed the shipped file"
+[ "$(ls -la --time-style=full-iso "$pub")" = "$ls_before" ] || die "a replica left files beside the shipped one"
+log "the shipped file is unchanged (sha256 $sum_before), nothing added beside it"
 log "PASS in $(( $(date +%s) - START )) s"

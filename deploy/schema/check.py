@@ -32,7 +32,7 @@ TYPES = {
 }
 KIND_DEFS = {
     ("v1", "ConfigMap"), ("v1", "Service"), ("v1", "PersistentVolumeClaim"),
-    ("apps/v1", "StatefulSet"), ("batch/v1", "Job"),
+    ("apps/v1", "StatefulSet"), ("apps/v1", "Deployment"), ("batch/v1", "Job"),
     ("kustomize.config.k8s.io/v1beta1", "Kustomization"),
 }
 
@@ -97,7 +97,7 @@ def quantity(q):
 
 def pod_specs(doc):
     kind = doc.get("kind")
-    if kind in ("StatefulSet", "Job"):
+    if kind in ("StatefulSet", "Deployment", "Job"):
         return [doc.get("spec", {}).get("template", {})]
     return []
 
@@ -120,7 +120,7 @@ def consistency(docs, errors):
             # The design: one writer of the SQLite file (deploy/README.md).
             if d["spec"].get("replicas", 1) != 1:
                 errors.append("%s: replicas must be 1 (single SQLite writer)" % where)
-        if kind in ("StatefulSet",):
+        if kind in ("StatefulSet", "Deployment"):
             sel = d["spec"]["selector"]["matchLabels"]
             labels = d["spec"]["template"].get("metadata", {}).get("labels", {})
             if any(labels.get(k) != v for k, v in sel.items()):
@@ -140,7 +140,7 @@ def consistency(docs, errors):
                                 where, spec.get("completions"), data["ALIGNSET_SHARDS"]))
         if kind == "Service":
             sel = d["spec"].get("selector", {})
-            targets = [(f2, d2) for f2, d2 in docs if d2.get("kind") == "StatefulSet" and all(
+            targets = [(f2, d2) for f2, d2 in docs if d2.get("kind") in ("StatefulSet", "Deployment") and all(
                 d2["spec"]["template"].get("metadata", {}).get("labels", {}).get(k) == v for k, v in sel.items())]
             if not targets:
                 errors.append("%s: selector %s matches no workload" % (where, sel))
@@ -185,9 +185,25 @@ def consistency(docs, errors):
                     g = c.get(probe, {}).get("grpc")
                     if g and g["port"] not in ports:
                         errors.append("%s: %s port %s is not a container port" % (cw, probe, g["port"]))
-                if kind == "StatefulSet" and not all(
+                if kind in ("StatefulSet", "Deployment") and not all(
                         "grpc" in c.get(p, {}) for p in ("readinessProbe", "livenessProbe")):
                     errors.append("%s: the server needs gRPC readiness and liveness probes" % cw)
+                if kind == "Deployment":
+                    # Several pods, so no writer: each serves the shipped file read-only
+                    # (--read-only), from a volume mounted read-only (deploy/README.md).
+                    values = {}
+                    for ef in c.get("envFrom", []):
+                        values.update(configmaps.get(ef.get("configMapRef", {}).get("name"), {}))
+                    values.update({e["name"]: e.get("value") for e in c.get("env", [])})
+                    if str(values.get("ALIGNSET_READ_ONLY")) not in ("1", "true"):
+                        errors.append("%s: a Deployment's server must be a read-only replica "
+                                      "(ALIGNSET_READ_ONLY: \"1\"): only one pod may write SQLite" % cw)
+                    for vm in c.get("volumeMounts", []):
+                        v = volumes.get(vm["name"], {})
+                        if "persistentVolumeClaim" in v and not (
+                                vm.get("readOnly") is True and v["persistentVolumeClaim"].get("readOnly") is True):
+                            errors.append("%s: the cache volume %s of a replica must be mounted read-only "
+                                          "(volumeMount and claim readOnly: true)" % (cw, vm["name"]))
                 env = {e["name"] for e in c.get("env", [])}
                 for ef in c.get("envFrom", []):
                     name = ef.get("configMapRef", {}).get("name")
@@ -299,6 +315,11 @@ def self_test(paths):
         "selector mismatch": ("StatefulSet", lambda d: d["spec"]["selector"]["matchLabels"].__setitem__("app.kubernetes.io/name", "x")),
         "request above limit": ("StatefulSet", lambda d: sts(d)["resources"]["requests"].__setitem__("memory", "3Gi")),
         "unset $(VAR)": ("StatefulSet", lambda d: sts(d).setdefault("args", []).append("$(ALIGNSET_NOPE)")),
+        "replica not read-only": ("Deployment", lambda d: sts(d).setdefault("env", []).append(
+            {"name": "ALIGNSET_READ_ONLY", "value": "0"})),
+        "replica writable mount": ("Deployment", lambda d: [vm.__setitem__("readOnly", False)
+                                                            for vm in sts(d)["volumeMounts"]]),
+        "replica without liveness probe": ("Deployment", lambda d: sts(d).pop("livenessProbe")),
         "service port name": ("Service", lambda d: d["spec"]["ports"][0].__setitem__("targetPort", "http")),
         "bad enum": ("Service", lambda d: d["spec"].__setitem__("type", "Internal")),
         "shard count mismatch": ("Job", lambda d: d["spec"].__setitem__("completions", 63)
