@@ -8,7 +8,8 @@ What must agree:
   - every ALIGNSET_* variable set both in deploy/k8s/configmap.yaml and in the server's
     environment in deploy/compose.yaml (compose's "${VAR:-default}" counts as its default);
   - ALIGNSET_MAX_N: the ConfigMap, compose, the server's compiled default (its --help),
-    deploy/README.md's settings table and README.md's flag list;
+    deploy/README.md's settings table and the server's flag list (docs/operations.md, or
+    README.md in a tree without docs/);
   - the image version: the default of ARG ALIGNSET_VERSION in deploy/Dockerfile and
     deploy/Dockerfile.cuda, and the CMake project version; both images carry the OCI labels
     (title, description, version, source, licenses = Apache-2.0, the LICENSE file's).
@@ -66,8 +67,10 @@ def check(root, server):
     }
     m = re.search(r"\|\s*`ALIGNSET_MAX_N`\s*\|\s*(\d+)\s*\|", read(root, "deploy/README.md"))
     max_n["deploy/README.md"] = m.group(1) if m else None
-    m = re.search(r"`--max-n` \((\d+)\)", read(root, "README.md"))
-    max_n["README.md"] = m.group(1) if m else None
+    # The server's flag list: docs/operations.md since the README was split into docs/.
+    flags_doc = "docs/operations.md" if os.path.exists(os.path.join(root, "docs/operations.md")) else "README.md"
+    m = re.search(r"`--max-n` \((\d+)\)", read(root, flags_doc))
+    max_n[flags_doc] = m.group(1) if m else None
     if len(set(max_n.values())) != 1 or None in max_n.values():
         errors.append("ALIGNSET_MAX_N differs: " + ", ".join("%s %s" % kv for kv in max_n.items()))
 
@@ -95,6 +98,7 @@ def self_test(root, server):
         ("deploy/compose.yaml", "${ALIGNSET_WORKERS:-1}", "${ALIGNSET_WORKERS:-3}"),
         ("deploy/README.md", "| `ALIGNSET_MAX_N` | 65536 |", "| `ALIGNSET_MAX_N` | 32768 |"),
         ("deploy/Dockerfile", "ARG ALIGNSET_VERSION=", "ARG ALIGNSET_VERSION=9"),
+        ("docs/operations.md", "`--max-n` (65536)", "`--max-n` (4096)"),
         ("deploy/Dockerfile.cuda", 'licenses="Apache-2.0"', 'licenses="MIT"'),
     ]
     failures = 0
@@ -103,6 +107,8 @@ def self_test(root, server):
             for f in ("CMakeLists.txt", "README.md", "LICENSE"):
                 shutil.copy(os.path.join(root, f), tmp)
             shutil.copytree(os.path.join(root, "deploy"), os.path.join(tmp, "deploy"))
+            if os.path.isdir(os.path.join(root, "docs")):
+                shutil.copytree(os.path.join(root, "docs"), os.path.join(tmp, "docs"))
             text = read(tmp, rel)
             if old not in text:
                 print("self-test: %r not found in %s" % (old, rel))
