@@ -34,6 +34,8 @@ std::string SamplerHelp() {
        "  aligned              aligned sets from the server for the pixel's θ estimated by\n"
        "                       core/analysis's EstimateDirection on a --prepass of the pixel\n"
        "  aligned-exact        aligned sets for θ from the scene's geometry (the bound)\n"
+       "  aligned-lattice, aligned-lattice-exact  as aligned / aligned-exact, with aligned rank-1\n"
+       "                       lattices chosen locally for each served θ (no server)\n"
        "  line, segment        line / segment samples (Singh, Miller and Jarosz, \"Variance and\n"
        "                       Convergence Analysis of Monte Carlo Line and Segment Sampling\"),\n"
        "                       --orientation\n";
@@ -116,9 +118,13 @@ void AddRenderCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(FiniteIn(1e-6, 1.0));
   c->add_option("--prepass", o->request.prepass,
-                 "pre-pass of the direction estimator (aligned, pmj02bn-sheared, line, segment): "
+                 "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
                  "gridG, jgridG or samplesM, optionally cP (a confidence floor of P percent)")
       ->capture_default_str();
+  c->add_option("--lattice-window", o->request.lattice_window_deg,
+                 "aligned-lattice*: degrees either side of a pixel's θ its lattice is chosen for")
+      ->capture_default_str()
+      ->check(FiniteIn(0.0, 10.0));
   c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
   AddServiceOptions(c, &o->service);
   c->footer([] { return SamplerHelp(); });

@@ -283,7 +283,7 @@ double SegmentEstimate(const PixelIntegrand& f, uint32_t n, double segment_deg, 
 
 std::vector<std::string> RenderSamplerNames() {
   return {"pmj02bn-sheared", "pmj02bn-sheared-exact", "screen-space-rank1", "aligned",
-          "aligned-exact", "line", "segment"};
+          "aligned-exact", "aligned-lattice", "aligned-lattice-exact", "line", "segment"};
 }
 
 StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c) {
@@ -304,11 +304,15 @@ StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c)
     if (!c.tile) return Status::InvalidArgument(name + " needs a shift tile (internal: none given)");
     return std::unique_ptr<PixelSampler>(new ScreenSpace(c.n, *c.tile));
   }
-  if (name == "aligned" || name == "aligned-exact") {
-    const auto* dirs = name == "aligned" ? c.estimated : c.exact;
+  if (name == "aligned" || name == "aligned-exact" || name == "aligned-lattice" ||
+      name == "aligned-lattice-exact") {
+    const bool exact = name == "aligned-exact" || name == "aligned-lattice-exact";
+    const auto* dirs = exact ? c.exact : c.estimated;
     if (Status s = need_dirs(dirs); !s.ok()) return s;
     if (!c.sets || c.sets->n != c.n) {
-      return Status::InvalidArgument(name + " needs the aligned sets of N = " + std::to_string(c.n));
+      return Status::InvalidArgument(name + " needs the " +
+                                     (name.find("lattice") != std::string::npos ? "lattice" : "aligned") +
+                                     " sets of N = " + std::to_string(c.n));
     }
     return std::unique_ptr<PixelSampler>(
         new Aligned(c.n, c.sets, dirs, c.policy, c.per_pixel_shift));

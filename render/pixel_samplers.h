@@ -44,8 +44,8 @@ struct SamplerConfig {
   // pmj02bn-sheared, line and segment; `exact` steers the *-exact variants.
   const std::vector<PixelDirection>* estimated = nullptr;
   const std::vector<PixelDirection>* exact = nullptr;
-  const AlignedSetTable* sets = nullptr;   // aligned, aligned-exact
-  AlignedPolicy policy;                    // aligned, aligned-exact
+  const AlignedSetTable* sets = nullptr;   // aligned*, aligned-lattice*
+  AlignedPolicy policy;                    // aligned*, aligned-lattice*
   bool per_pixel_shift = true;             // aligned: a CP shift per pixel (off: an ablation)
   const ShiftTile* tile = nullptr;         // screen-space-rank1
   LineOrientation orientation = LineOrientation::kNormal;  // line, segment
@@ -68,6 +68,8 @@ struct SamplerConfig {
 //    sampler on `tile`.
 //  - aligned, aligned-exact: the set of `sets` for the pixel's estimated or
 //    exact direction (ChooseSet under `policy`), CP-shifted per pixel.
+//  - aligned-lattice, aligned-lattice-exact: the same recipe over a table of
+//    aligned rank-1 lattices (render/lattice_sets.h) instead of fetched sets.
 //  - line, segment: line and segment samples (Singh, Miller and Jarosz) in
 //    `orientation`.
 // INVALID_ARGUMENT for an unknown name, a missing input, or an N the

@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include <alignset/npy.h>
 
 #include "render/direction.h"
+#include "render/lattice_sets.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/set_fetch.h"
@@ -50,7 +52,7 @@ StatusOr<RenderSummary> RunRender(
   // The pre-pass only for the samplers that read the estimated θ (it costs
   // about 3 ms per pixel with grid16).
   const bool uses_estimate =
-      r.sampler == "aligned" || r.sampler == "pmj02bn-sheared" ||
+      r.sampler == "aligned" || r.sampler == "aligned-lattice" || r.sampler == "pmj02bn-sheared" ||
       ((r.sampler == "line" || r.sampler == "segment") && r.orientation != LineOrientation::kRandom);
   const std::vector<PixelDirection> estimated =
       uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
@@ -74,6 +76,19 @@ StatusOr<RenderSummary> RunRender(
     c.sets = &table;
     summary.note = "180 one-direction and " + std::to_string(pairs.size()) +
                    " two-direction sets from " + r.server.address;
+  }
+  if (r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact") {
+    LatticeTableStats st;
+    auto built = AlignedLatticeTable(
+        r.spp, {r.sampler == "aligned-lattice" ? &estimated : &exact}, c.policy, r.lattice_window_deg,
+        r.threads, &st, [&](double done, double total) { progress("lattices", done, total, ""); });
+    if (!built.ok()) return built.status();
+    table = std::move(*built);
+    c.sets = &table;
+    char line[160];
+    std::snprintf(line, sizeof line, "%zu one-direction and %zu two-direction lattices chosen in %.2f s",
+                  st.one, st.two, st.seconds);
+    summary.note = line;
   }
   if (r.sampler == "screen-space-rank1") {
     auto t = OptimizeShiftTile(r.spp, ShiftTileOptions{});

@@ -25,6 +25,7 @@ struct RenderRequest {
   double segment_length = 0.5;
   int threads = 2;
   std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
+  double lattice_window_deg = 1.0;  // aligned-lattice*: the window of normals a generator is chosen for
   ConnectOptions server;       // aligned, aligned-exact only
 };
 

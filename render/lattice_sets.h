@@ -1,0 +1,32 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <alignset/pixel_sampler.h>
+
+#include "render/aligned_sets.h"
+#include "render/direction.h"
+#include "core/util/status.h"
+
+namespace alignset::render {
+
+// The aligned rank-1 lattices a render reads (sampler aligned-lattice): for
+// every served degree and pair the direction maps choose under `policy`, the
+// lattice whose generator core/optimize/aligned_lattice.h chooses for that
+// direction (window `window_deg`). Built locally, no server: a generator
+// takes milliseconds to a second, and the same key always gives the same
+// lattice. The table has the shape of the fetched optimized sets, so the
+// aligned sampler reads either.
+struct LatticeTableStats {
+  size_t one = 0, two = 0;
+  double seconds = 0.0;
+};
+StatusOr<AlignedSetTable> AlignedLatticeTable(
+    uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
+    const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats = nullptr,
+    const std::function<void(double done, double total)>& progress = {});
+
+}  // namespace alignset::render
