@@ -42,6 +42,7 @@
 #include <vector>
 
 #include "render/direction.h"
+#include "render/lattice_sets.h"
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
@@ -81,10 +82,13 @@ struct Variant {
   std::string prepass;  // aligned: the estimator's pre-pass (empty: the one of record)
 };
 
+bool IsLattice(const Variant& v) { return v.sampler.rfind("aligned-lattice", 0) == 0; }
+
 std::vector<Variant> AllVariants() {
   std::vector<Variant> v;
   for (const char* s : {"random", "owen-sobol", "pmj02bn", "pmj02bn-sheared", "rank1-lattice",
-                        "screen-space-rank1", "aligned", "aligned-exact"}) {
+                        "screen-space-rank1", "aligned", "aligned-exact", "aligned-lattice",
+                        "aligned-lattice-exact"}) {
     v.push_back({s, s});
   }
   Variant axis{"aligned-none-axis", "aligned"};
@@ -413,7 +417,9 @@ int Main(int argc, char** argv) {
     }
     AlignedSetTable table;
     bool need_sets = false;
-    for (const Variant& v : variants) need_sets |= v.sampler.rfind("aligned", 0) == 0;
+    for (const Variant& v : variants) {
+      need_sets |= v.sampler.rfind("aligned", 0) == 0 && !IsLattice(v);
+    }
     if (need_sets) {
       std::map<std::string, std::unique_ptr<cli::Progress>> bars;
       auto t0 = std::chrono::steady_clock::now();
@@ -432,6 +438,34 @@ int Main(int argc, char** argv) {
       table = std::move(*fetched);
       std::fprintf(stderr, "N=%u: 180 one-direction and %zu two-direction sets in %.1f s\n", n,
                    pairs.size(), Seconds(t0));
+    }
+    // The aligned lattices, chosen here for the served degrees and pairs the
+    // lattice variants' direction maps need (no server).
+    AlignedSetTable lattices;
+    {
+      std::vector<const std::vector<PixelDirection>*> maps;
+      AlignedPolicy policy;
+      for (const SceneData& d : scenes) {
+        for (const Variant& v : now) {
+          if (!IsLattice(v)) continue;
+          maps.push_back(v.sampler == "aligned-lattice-exact" ? &d.exact : &d.estimated);
+          policy = v.policy;
+        }
+      }
+      if (!maps.empty()) {
+        LatticeTableStats st;
+        cli::Progress bar("lattices");
+        auto built = AlignedLatticeTable(n, maps, policy, 1.0, threads, &st,
+                                         [&](double done, double total) { bar.Update(done, total, ""); });
+        bar.Finish("");
+        if (!built.ok()) {
+          std::fprintf(stderr, "render_bench: N=%u: %s\n", n, built.status().message().c_str());
+          return 1;
+        }
+        lattices = std::move(*built);
+        std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction lattices in %.1f s\n", n,
+                     st.one, st.two, st.seconds);
+      }
     }
     ShiftTile tile;
     bool need_tile = false;
@@ -455,7 +489,7 @@ int Main(int argc, char** argv) {
         c.n = n;
         c.estimated = v.prepass.empty() ? &d.estimated : &d.by_prepass.at(v.prepass);
         c.exact = &d.exact;
-        c.sets = &table;
+        c.sets = IsLattice(v) ? &lattices : &table;
         c.policy = v.policy;
         c.per_pixel_shift = v.per_pixel_shift;
         c.tile = &tile;
@@ -486,6 +520,7 @@ int Main(int argc, char** argv) {
         // acceptance table compares (plot_render.py bootstraps its ratios
         // over their edge pixels).
         const bool compared = n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
+                                           v.label == "aligned-lattice" || v.label == "rank1-lattice" ||
                                            v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
         if (compared || std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {
           WriteNpy(out + "/images/" + d.scene.name() + "_" + v.label + "_n" + std::to_string(n) + ".npy",
