@@ -7,6 +7,7 @@
 
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "core/align/canonical.h"
+#include "server/construction.h"
 #include "server/set_lru.h"
 
 namespace alignset::server {
@@ -39,6 +40,11 @@ FillFunction MakeWriterFill(const std::string& address, const std::string& token
     if (key.dirs.count == 2) req.add_directions_deg(Phi2Degrees(key.dirs));
     req.set_steps_per_degree(key.dirs.count == 1 && key.dirs.phi1_quarter != 0 ? 4 : 1);
     req.set_realization(key.realization);
+    // A lattice key asks the writer for the lattice; any other profile is
+    // the optimized construction (checked against the answer below).
+    if (ConstructionOfProfile(key.profile) == Construction::kLattice) {
+      req.set_construction(ConstructionName(Construction::kLattice));
+    }
     grpc::ClientContext ctx;
     ctx.set_deadline(std::chrono::system_clock::now() +
                      std::chrono::milliseconds(static_cast<int64_t>(timeout_seconds * 1000)));

@@ -6,6 +6,7 @@
 #include <ctime>
 #include <iterator>
 
+#include "core/optimize/aligned_lattice.h"
 #include "core/optimize/realization.h"
 
 namespace alignset::server {
@@ -157,7 +158,8 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
 
 Scheduler::~Scheduler() { Shutdown(); }
 
-std::string Scheduler::ProfileFor(uint32_t n) const {
+std::string Scheduler::ProfileFor(uint32_t n, Construction construction) const {
+  if (construction == Construction::kLattice) return kLatticeProfile;
   std::lock_guard<std::mutex> lock(profile_mu_);
   auto it = profiles_.find(n);
   if (it != profiles_.end()) return it->second;
@@ -167,8 +169,8 @@ std::string Scheduler::ProfileFor(uint32_t n) const {
 }
 
 storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs,
-                                  uint32_t realization) const {
-  return storage::SetKey{n, dirs, ProfileFor(n), realization};
+                                  uint32_t realization, Construction construction) const {
+  return storage::SetKey{n, dirs, ProfileFor(n, construction), realization};
 }
 
 StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
@@ -493,6 +495,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
       return SliceEnd::kDone;
     }
     if (options_.fill) return FillSlice(job);
+    if (ConstructionOfProfile(key.profile) == Construction::kLattice) return LatticeSlice(job);
     OptimizationProblem problem;
     problem.n = key.n;
     problem.directions = {Phi1Degrees(key.dirs)};
@@ -621,6 +624,52 @@ Scheduler::SliceEnd Scheduler::FillSlice(const std::shared_ptr<Job>& job) {
   } else {
     spdlog::warn("fill {} from the writer: {}", job->name, record.status().message());
     status = record.status();
+  }
+  std::lock_guard<std::mutex> lock(mu_);
+  job->status = status;
+  job->entry = std::move(entry);
+  return SliceEnd::kDone;
+}
+
+Scheduler::SliceEnd Scheduler::LatticeSlice(const std::shared_ptr<Job>& job) {
+  const storage::SetKey& key = job->key;
+  // The canonical key's exact angles (30.25 on the quarter-degree grid); the
+  // served set is this one aligned by swap / mirror, which is the lattice
+  // of the swapped / mirrored generator and integrates the swapped /
+  // mirrored edges exactly as well (the search's family of edges and its
+  // corner term are symmetric under the square's group).
+  std::vector<double> dirs = {Phi1Degrees(key.dirs)};
+  if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
+  AlignedLatticeOptions lattice;
+  lattice.window_deg = kLatticeWindowDeg;
+  lattice.threads = std::max(1, options_.threads_per_worker);
+  metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
+  spdlog::info("lattice start {} threads={}", job->name, lattice.threads);
+  const auto t0 = Clock::now();
+  auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
+  Status status;
+  std::shared_ptr<const CanonicalEntry> entry;
+  if (!choice.ok()) {
+    metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
+    spdlog::error("lattice failed {}: {}", job->name, choice.status().message());
+    status = Status::Internal("lattice construction failed: " + choice.status().message());
+  } else {
+    storage::SetRecord record;
+    record.key = key;
+    // The seed is the realization number itself (server/construction.h).
+    record.points = Rank1LatticePoints(key.n, choice->generator, key.realization);
+    record.iterations = 0;
+    record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    record.engine = "lattice";
+    record.created_unix = static_cast<int64_t>(std::time(nullptr));
+    job->run_seconds += record.optimize_seconds;
+    const bool stored = Store(record, job->name);
+    metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
+    metrics_->RecordOptimization(record.optimize_seconds);
+    spdlog::info("lattice done {} generator={} score={:.6g} candidates={} {:.3f} s", job->name,
+                 choice->generator, choice->score, choice->candidates, record.optimize_seconds);
+    entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
+    lru_.Put(job->name, entry);
   }
   std::lock_guard<std::mutex> lock(mu_);
   job->status = status;

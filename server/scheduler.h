@@ -17,6 +17,7 @@
 #include "core/spectral/spectral_engine.h"
 #include "server/cache_evictor.h"
 #include "server/canonical_entry.h"
+#include "server/construction.h"
 #include "server/metrics.h"
 #include "server/set_lru.h"
 #include "storage/set_cache.h"
@@ -117,6 +118,12 @@ class Ticket {
 //
 // Every finished set is stored in SQLite in one transaction (SetCache::Put)
 // before any waiter sees it, then kept decoded in an in-memory LRU.
+//
+// A key with the lattice profile (server/construction.h) is a job like any
+// other (single flight, queue, priority, bounds, metrics: it counts as an
+// optimization), but its one slice computes an aligned rank-1 lattice
+// instead of running the optimizer: it never pauses, and once running it
+// finishes and is stored even when its waiters have left.
 class Scheduler {
  public:
   struct Options {
@@ -153,10 +160,11 @@ class Scheduler {
 
   // The key of N points with canonical directions `dirs` under this server's
   // optimization profile; `realization` picks one of the key's independent
-  // sets (optimized from RealizationSeed(seed, realization)).
-  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs,
-                         uint32_t realization = 0) const;
-  std::string ProfileFor(uint32_t n) const;
+  // sets (optimized from RealizationSeed(seed, realization)). A lattice key
+  // has kLatticeProfile instead (server/construction.h).
+  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs, uint32_t realization = 0,
+                         Construction construction = Construction::kOptimized) const;
+  std::string ProfileFor(uint32_t n, Construction construction = Construction::kOptimized) const;
   const Options& options() const { return options_; }
 
   // A hit (memory, then SQLite), else a share in the key's job, queued if new
@@ -198,6 +206,9 @@ class Scheduler {
   SliceEnd RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine, bool engine_holds_k);
   // A replica's job (--fill-from): the set from the writer, kept in memory.
   SliceEnd FillSlice(const std::shared_ptr<Job>& job);
+  // A lattice key's job: the generator search and the points, in one slice
+  // (not paused, not stopped: seconds at most), stored like an optimized set.
+  SliceEnd LatticeSlice(const std::shared_ptr<Job>& job);
   // Writes a finished set (a writer), making room first when the file is
   // bounded; false when it was not stored.
   bool Store(const storage::SetRecord& record, const std::string& name);

@@ -9,6 +9,7 @@
 #include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
 #include "server/bearer_token.h"
+#include "server/construction.h"
 #include "server/log_text.h"
 #include "server/validation.h"
 
@@ -111,6 +112,14 @@ StatusOr<Canonicalization> AlignSetService::Canonicalize(const v1::AlignedSetReq
   return ValidateAlignedSetRequest(req.n(), dirs, config_.max_n, *grid);
 }
 
+StatusOr<storage::SetKey> AlignSetService::KeyOf(const v1::AlignedSetRequest& req,
+                                                 const Canonicalization& canon) const {
+  if (Status r = ValidateRealization(req.realization()); !r.ok()) return r;
+  auto construction = ParseConstruction(req.construction());
+  if (!construction.ok()) return construction.status();
+  return scheduler_->KeyFor(req.n(), canon.key, req.realization(), *construction);
+}
+
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
                               const CanonicalEntry& entry, bool from_cache,
                               v1::AlignedSetResponse* out) const {
@@ -128,6 +137,20 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   md->mutable_loss()->set_total(rec.loss.total);
   md->mutable_loss()->set_spectrum(rec.loss.spectrum);
   md->mutable_loss()->set_sliced_wasserstein(rec.loss.sw);
+  md->set_from_cache(from_cache);
+  md->set_optimize_seconds(rec.optimize_seconds);
+  md->set_iterations(rec.iterations);
+  md->set_engine(rec.engine);
+  md->set_not_stored(!entry.stored());
+  const Construction construction = ConstructionOfProfile(key.profile);
+  md->set_construction(ConstructionName(construction));
+  if (construction == Construction::kLattice) {
+    // No optimization parameters: the lattice's seed is its realization.
+    v1::OptimizationParameters* p = md->mutable_parameters();
+    p->set_seed(key.realization);
+    p->set_algorithm_version(kLatticeAlgorithmVersion);
+    return;
+  }
   const FrequencyParams fp = DefaultFrequencyParams(key.n);
   const OptimizerOptions& opt = scheduler_->options().optimizer;
   v1::OptimizationParameters* p = md->mutable_parameters();
@@ -139,10 +162,5 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_sw_weight(EffectiveSwWeight(opt, key.n));
   p->set_seed(RealizationSeed(scheduler_->options().seed, key.realization));
   p->set_algorithm_version(storage::kAlgorithmVersion);
-  md->set_from_cache(from_cache);
-  md->set_optimize_seconds(rec.optimize_seconds);
-  md->set_iterations(rec.iterations);
-  md->set_engine(rec.engine);
-  md->set_not_stored(!entry.stored());
 }
 }  // namespace alignset::server

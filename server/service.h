@@ -85,6 +85,10 @@ class AlignSetService final : public AlignSetServiceBase {
                AngleGrid grid = AngleGrid::kWholeDegree) const;
   // An aligned-set request's canonicalization on its grid.
   StatusOr<Canonicalization> Canonicalize(const v1::AlignedSetRequest& req) const;
+  // The canonical key the request asks for: its realization and
+  // construction checked (INVALID_ARGUMENT), the profile its construction's.
+  StatusOr<storage::SetKey> KeyOf(const v1::AlignedSetRequest& req,
+                                  const Canonicalization& canon) const;
   void FillSet(const Canonicalization& canon, const storage::SetKey& key,
                const CanonicalEntry& entry, bool from_cache, v1::AlignedSetResponse* out) const;
   // Takes a waiting slot; false (and nothing taken) at --max-waiting-calls.

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include "server/construction.h"
 #include "server/service.h"
 #include "server/validation.h"
 
@@ -67,11 +68,16 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
     if (Status s = ValidatePointCount(req->space_n(), config_.max_n); !s.ok()) {
       return Invalid(s, "GetAlignedSets");
     }
+    // Checked once for the call rather than refused 46 times, item by item.
+    if (auto c = ParseConstruction(req->space_construction()); !c.ok()) {
+      return Invalid(c.status(), "GetAlignedSets");
+    }
     for (size_t i = 0; i < CanonicalKeyCount(1); ++i) {
       BatchItemState item;
       item.request.set_n(req->space_n());
       item.request.add_directions_deg(CanonicalKeyAt(1, i).phi1);
       item.request.set_realization(req->space_realization());
+      item.request.set_construction(req->space_construction());
       item.request.set_steps_per_degree(1);  // the 46 whole-degree keys
       items.push_back(std::move(item));
     }
@@ -98,13 +104,14 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
       item.status = canon.status();
       continue;
     }
-    if (Status r = ValidateRealization(item.request.realization()); !r.ok()) {
+    auto key = KeyOf(item.request, *canon);
+    if (!key.ok()) {
       metrics_->requests_invalid.fetch_add(1, std::memory_order_relaxed);
-      item.status = r;
+      item.status = key.status();
       continue;
     }
     item.canon = *canon;
-    item.key = scheduler_->KeyFor(item.request.n(), canon->key, item.request.realization());
+    item.key = std::move(key).value();
     auto ticket = scheduler_->Acquire(item.key, Priority::kInteractive, ctx->peer());
     if (!ticket.ok()) {
       item.status = ticket.status();

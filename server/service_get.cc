@@ -99,10 +99,9 @@ grpc::ServerUnaryReactor* AlignSetService::GetAlignedSet(grpc::CallbackServerCon
   metrics_->requests_get.fetch_add(1, std::memory_order_relaxed);
   auto canon = Canonicalize(*req);
   if (!canon.ok()) return finish(Invalid(canon.status(), "GetAlignedSet"));
-  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
-    return finish(Invalid(r, "GetAlignedSet"));
-  }
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
+  auto key_or = KeyOf(*req, *canon);
+  if (!key_or.ok()) return finish(Invalid(key_or.status(), "GetAlignedSet"));
+  const storage::SetKey key = std::move(key_or).value();
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
   if (!ticket.ok()) return finish(ToGrpc(ticket.status()));
   if ((*ticket)->Done()) {

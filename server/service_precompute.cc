@@ -8,6 +8,7 @@
 #include <memory>
 #include <thread>
 
+#include "server/construction.h"
 #include "server/log_text.h"
 #include "server/service_internal.h"
 #include "server/validation.h"
@@ -96,6 +97,8 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
                    "Precompute");
   }
   if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
+  auto construction = ParseConstruction(req->construction());
+  if (!construction.ok()) return Invalid(construction.status(), "Precompute");
   const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
   // The items are enumerated as they are reached, not listed up front: a
   // request may name 64 N x 4141 keys x 64 realizations. Item i (N outer,
@@ -108,11 +111,11 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   auto item = [&](uint64_t j) {
     const uint64_t i = req->shard_index() + j * shards;
     return scheduler_->KeyFor(req->n(static_cast<int>(i / per_n)), space[(i / realizations) % space_size],
-                              static_cast<uint32_t>(i % realizations));
+                              static_cast<uint32_t>(i % realizations), *construction);
   };
   const std::string client = ctx->peer();
-  spdlog::info("precompute: {} items (shard {}/{}) from {}", total, req->shard_index(), shards,
-               Quoted(client));
+  spdlog::info("precompute: {} {} items (shard {}/{}) from {}", total, ConstructionName(*construction),
+               req->shard_index(), shards, Quoted(client));
 
   const auto t0 = Clock::now();
   v1::PrecomputeProgress p;

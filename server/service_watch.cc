@@ -158,10 +158,9 @@ grpc::ServerWriteReactor<v1::WatchEvent>* AlignSetService::WatchAlignedSet(
   metrics_->requests_watch.fetch_add(1, std::memory_order_relaxed);
   auto canon = Canonicalize(*req);
   if (!canon.ok()) return refuse(Invalid(canon.status(), "WatchAlignedSet"));
-  if (Status r = ValidateRealization(req->realization()); !r.ok()) {
-    return refuse(Invalid(r, "WatchAlignedSet"));
-  }
-  const storage::SetKey key = scheduler_->KeyFor(req->n(), canon->key, req->realization());
+  auto key_or = KeyOf(*req, *canon);
+  if (!key_or.ok()) return refuse(Invalid(key_or.status(), "WatchAlignedSet"));
+  const storage::SetKey key = std::move(key_or).value();
   auto ticket = scheduler_->Acquire(key, Priority::kInteractive, ctx->peer());
   if (!ticket.ok()) return refuse(ToGrpc(ticket.status()));
   if (!TakeWaitingSlot()) {

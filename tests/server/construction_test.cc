@@ -1,0 +1,107 @@
+// The construction of a served set: the names a request may give, the
+// lattice's own profile, and a lattice key's job in the scheduler (computed
+// without the spectral engine, stored like an optimized set).
+#include "server/construction.h"
+
+#include <gtest/gtest.h>
+
+#include "core/optimize/aligned_lattice.h"
+#include "server/scheduler.h"
+#include "tests/server/scheduler_fixture.h"
+
+namespace alignset::server {
+namespace {
+
+TEST(Construction, NamesParseAndUnknownOnesListTheKnown) {
+  EXPECT_EQ(ParseConstruction("").value(), Construction::kOptimized);
+  EXPECT_EQ(ParseConstruction("optimized").value(), Construction::kOptimized);
+  EXPECT_EQ(ParseConstruction("lattice").value(), Construction::kLattice);
+  for (const char* bad : {"Lattice", "sobol", " lattice", "optimised"}) {
+    auto c = ParseConstruction(bad);
+    ASSERT_FALSE(c.ok()) << bad;
+    EXPECT_EQ(c.status().code(), Status::Code::kInvalidArgument);
+    EXPECT_NE(c.status().message().find("'optimized'"), std::string::npos) << c.status().message();
+    EXPECT_NE(c.status().message().find("'lattice'"), std::string::npos) << c.status().message();
+  }
+  // A client's name is escaped and cut, never echoed raw.
+  auto forged = ParseConstruction("x\nforged" + std::string(1000, 'a'));
+  ASSERT_FALSE(forged.ok());
+  EXPECT_EQ(forged.status().message().find('\n'), std::string::npos);
+  EXPECT_LT(forged.status().message().size(), 300u);
+  EXPECT_STREQ(ConstructionName(Construction::kLattice), "lattice");
+  EXPECT_STREQ(ConstructionName(Construction::kOptimized), "optimized");
+}
+
+TEST(Construction, TheLatticeProfileIsAValidKeyProfileOfItsOwn) {
+  EXPECT_EQ(std::string(kLatticeProfile), "lattice-v1-w1");
+  EXPECT_EQ(ConstructionOfProfile(kLatticeProfile), Construction::kLattice);
+  storage::SetKey key{1024, {1, 30, 30}, kLatticeProfile, 0};
+  EXPECT_TRUE(storage::ValidateKey(key).ok());
+  const std::string optimized = storage::ProfileId(DefaultFrequencyParams(1024), OptimizerOptions{}, 1);
+  EXPECT_NE(optimized, kLatticeProfile);
+  EXPECT_EQ(ConstructionOfProfile(optimized), Construction::kOptimized);
+}
+
+class LatticeJobTest : public testing::SchedulerFixture {};
+
+TEST_F(LatticeJobTest, ALatticeKeyIsComputedWithoutTheEngineAndStored) {
+  // The engines wait at a closed gate: an optimization could not finish.
+  gate_->Close();
+  Scheduler::Options o;
+  o.workers = 1;
+  o.optimizer.max_iterations = 20;
+  StartWith(o);
+  const CanonicalDirections dirs{1, 30, 30};
+  const storage::SetKey lattice = scheduler_->KeyFor(256, dirs, 2, Construction::kLattice);
+  const storage::SetKey optimized = scheduler_->KeyFor(256, dirs, 2);
+  EXPECT_EQ(lattice.profile, kLatticeProfile);
+  EXPECT_NE(optimized.profile, lattice.profile);
+  EXPECT_EQ(scheduler_->ProfileFor(256, Construction::kLattice), kLatticeProfile);
+
+  auto ticket = MustAcquire(lattice, Priority::kInteractive);
+  ASSERT_NE(ticket, nullptr);
+  WaitDone(*ticket, 300);
+  auto entry = ticket->Result();
+  ASSERT_TRUE(entry.ok()) << entry.status().message();
+  EXPECT_FALSE(ticket->from_cache());
+  const storage::SetRecord& record = (*entry)->record();
+  EXPECT_EQ(record.engine, "lattice");
+  EXPECT_EQ(record.iterations, 0);
+  EXPECT_EQ(record.loss.total, 0.0);
+  EXPECT_GT(record.optimize_seconds, 0.0);
+  auto choice = ChooseAlignedLatticeGenerator(256, {30.0});
+  ASSERT_TRUE(choice.ok());
+  // Realization 2 is seed 2 (the realization number itself).
+  EXPECT_EQ(record.points, Rank1LatticePoints(256, choice->generator, 2));
+  EXPECT_TRUE((*entry)->stored());
+  EXPECT_TRUE(cache_->Contains(lattice).value());
+  EXPECT_FALSE(cache_->Contains(optimized).value());
+  EXPECT_EQ(metrics_.optimizations_started.load(), 1u);
+  EXPECT_EQ(metrics_.optimizations_completed.load(), 1u);
+
+  // The quarter-degree key is chosen for its exact angle.
+  const CanonicalDirections quarter{1, 30, 30, 1};  // 30.25
+  auto q = MustAcquire(scheduler_->KeyFor(256, quarter, 0, Construction::kLattice),
+                       Priority::kInteractive);
+  ASSERT_NE(q, nullptr);
+  WaitDone(*q, 300);
+  auto qe = q->Result();
+  ASSERT_TRUE(qe.ok()) << qe.status().message();
+  auto qchoice = ChooseAlignedLatticeGenerator(256, {30.25});
+  ASSERT_TRUE(qchoice.ok());
+  EXPECT_EQ((*qe)->record().points, Rank1LatticePoints(256, qchoice->generator, 0));
+
+  // The optimized key of the same directions is another job, held at the gate.
+  auto opt = MustAcquire(optimized, Priority::kInteractive);
+  ASSERT_NE(opt, nullptr);
+  EXPECT_FALSE(opt->Done());
+  gate_->Open();
+  WaitDone(*opt, 600);
+  auto oe = opt->Result();
+  ASSERT_TRUE(oe.ok()) << oe.status().message();
+  EXPECT_NE((*oe)->record().engine, "lattice");
+  EXPECT_NE((*oe)->record().points, record.points);
+}
+
+}  // namespace
+}  // namespace alignset::server
