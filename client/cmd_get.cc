@@ -45,6 +45,8 @@ struct GetOptions {
   // --space 1dir: the whole one-direction space of N (the 46 canonical sets,
   // phi = 0..45) in one batch call, as (46, N, 2) .npy or 46 text sets.
   std::string space;
+  // "optimized" (the default) or "lattice": how the server makes the set.
+  std::string construction = "optimized";
   ServiceOptions service;
 };
 
@@ -54,10 +56,10 @@ std::string Comment(const SetInfo& i) {
   std::snprintf(comment, sizeof(comment),
                 "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s "
                 "realization=%u\nswap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d "
-                "engine=%s seed=%llu algorithm_version=%d",
+                "engine=%s seed=%llu algorithm_version=%d construction=%s",
                 i.n, Join(i.served_exact_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
                 i.inverted, i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
-                static_cast<unsigned long long>(i.seed), i.algorithm_version);
+                static_cast<unsigned long long>(i.seed), i.algorithm_version, i.construction.c_str());
   return comment;
 }
 
@@ -72,7 +74,7 @@ StatusOr<AlignedSet> WatchOne(ServiceClient& client, const GetOptions& o) {
   Progress progress("optimize");
   bool shown = false;
   const SetRequest request{static_cast<uint32_t>(o.n), o.dirs,
-                           static_cast<uint32_t>(o.realization), StepsPerDegree(o)};
+                           static_cast<uint32_t>(o.realization), StepsPerDegree(o), o.construction};
   auto set = client.WatchAlignedSet(request, [&](const WatchUpdate& u) {
     if (o.quiet) return;
     shown = true;
@@ -94,7 +96,7 @@ StatusOr<std::vector<AlignedSet>> GetMany(ServiceClient& client, const GetOption
   std::vector<SetRequest> items;
   for (int64_t i = 0; i < *o.sets; ++i) {
     items.push_back({static_cast<uint32_t>(o.n), o.dirs, static_cast<uint32_t>(o.realization + i),
-                     StepsPerDegree(o)});
+                     StepsPerDegree(o), o.construction});
   }
   if (!o.quiet) {
     std::fprintf(stderr, "alignset get: %lld realizations (%lld..%lld) in one call\n",
@@ -173,8 +175,20 @@ int RunGetSpace(const GetOptions& o) {
     std::fprintf(stderr, "alignset get: the one-direction space of N = %lld (46 sets) in one call\n",
                  static_cast<long long>(o.n));
   }
-  auto batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
-                                               static_cast<uint32_t>(o.realization));
+  StatusOr<std::vector<BatchItem>> batch = Status::Internal("no call");
+  if (o.construction == "optimized") {
+    batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
+                                            static_cast<uint32_t>(o.realization));
+  } else {
+    // Another construction: the same 46 keys as explicit items (the
+    // library's space call has no construction).
+    std::vector<SetRequest> items;
+    for (int k = 0; k <= 45; ++k) {
+      items.push_back({static_cast<uint32_t>(o.n), {static_cast<double>(k)},
+                       static_cast<uint32_t>(o.realization), 1, o.construction});
+    }
+    batch = (*client)->GetAlignedSets(items);
+  }
   if (!batch.ok()) return Failure(batch.status());
   std::vector<PointSet> points;
   std::string comment = "alignset one-direction space: set k is the canonical set for phi = k deg "
@@ -255,10 +269,15 @@ int RunGet(GetOptions o) {
     const SetInfo& si = s.info;
     if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
                              static_cast<unsigned long long>(si.seed));
-    std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
-                 si.loss_spectrum, si.loss_sw);
-    std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n",
-                 si.iterations, si.optimize_seconds, si.engine.c_str(), si.profile.c_str());
+    if (si.construction == "lattice") {
+      std::fprintf(report, "construction   aligned rank-1 lattice, %.3f s, profile %s\n",
+                   si.optimize_seconds, si.profile.c_str());
+    } else {
+      std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
+                   si.loss_spectrum, si.loss_sw);
+      std::fprintf(report, "optimization   %d iterations, %.2f s, engine %s, profile %s\n",
+                   si.iterations, si.optimize_seconds, si.engine.c_str(), si.profile.c_str());
+    }
     std::fprintf(report, "from cache     %s\n", si.from_cache ? "yes" : "no");
   }
   std::fprintf(report, "wrote          %s\n", o.out.c_str());
@@ -298,6 +317,11 @@ void AddGetCommand(CLI::App& app) {
   c->add_option("--angle-step", o->angle_step,
                 "grid one direction is served on: 0.25 or 1 degree (default: the server's)")
       ->check(CLI::IsMember({"1", "0.25"}));
+  c->add_option("--construction", o->construction,
+                "optimized (the server's optimized sets) or lattice (an aligned rank-1\n"
+                "lattice, cached apart from them)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"optimized", "lattice"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

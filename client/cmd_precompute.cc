@@ -35,6 +35,7 @@ struct PrecomputeOptions {
   std::string shard;
   int64_t realizations = 1;
   std::string angle_step = "1";  // the one-direction grid: "1" (46 keys) or "0.25" (181)
+  std::string construction = "optimized";  // or "lattice"
   ServiceOptions service;
 };
 
@@ -43,6 +44,7 @@ int RunPrecompute(const PrecomputeOptions& o) {
   for (int64_t n : o.n) spec.n.push_back(static_cast<uint32_t>(n));
   spec.realizations = static_cast<uint32_t>(o.realizations);
   spec.steps_per_degree = o.angle_step == "0.25" ? 4 : 1;
+  spec.construction = o.construction;
   const std::string space = !o.space.empty() ? o.space : o.keys.empty() ? "1dir" : "keys";
   if (space == "1dir") {
     spec.space = 1;
@@ -83,7 +85,9 @@ int RunPrecompute(const PrecomputeOptions& o) {
   if (!last.ok()) return Failure(last.status());
   progress.Finish("");
   std::printf("items          %llu\n", static_cast<unsigned long long>(last->total));
-  std::printf("optimized      %llu\n", static_cast<unsigned long long>(last->done));
+  // A lattice is constructed, not optimized; the count is the same field.
+  std::printf("%s%llu\n", o.construction == "lattice" ? "constructed    " : "optimized      ",
+              static_cast<unsigned long long>(last->done));
   std::printf("cached already %llu\n", static_cast<unsigned long long>(last->cached_already));
   std::printf("failed         %llu\n", static_cast<unsigned long long>(last->failed));
   std::printf("time           %s\n", FormatDuration(last->elapsed_seconds).c_str());
@@ -122,6 +126,11 @@ void AddPrecomputeCommand(CLI::App& app) {
                 "what a default server serves one direction on)")
       ->capture_default_str()
       ->check(CLI::IsMember({"1", "0.25"}));
+  c->add_option("--construction", o->construction,
+                "optimized (the server's optimized sets) or lattice (aligned rank-1 lattices,\n"
+                "cached apart from them)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"optimized", "lattice"}));
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }

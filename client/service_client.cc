@@ -101,6 +101,8 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   i.optimize_seconds = md.optimize_seconds();
   i.iterations = md.iterations();
   i.engine = md.engine();
+  // A server from before constructions sends none: its sets are optimized.
+  if (!md.construction().empty()) i.construction = md.construction();
   return i;
 }
 
@@ -238,7 +240,20 @@ v1::AlignedSetRequest MakeRequest(const SetRequest& r) {
   for (double d : r.directions_deg) req.add_directions_deg(d);
   req.set_realization(r.realization);
   req.set_steps_per_degree(r.steps_per_degree);
+  req.set_construction(r.construction);
   return req;
+}
+
+// A server that does not know constructions ignores the field and serves an
+// optimized set: refuse that answer rather than pass it off as a lattice.
+Status CheckConstruction(const SetRequest& r, const SetInfo& info, const std::string& address) {
+  const std::string asked = r.construction.empty() ? "optimized" : r.construction;
+  if (info.construction == asked) return Status::Ok();
+  return FromGrpc(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                               "asked for construction '" + asked + "', the server answered '" +
+                                   info.construction +
+                                   "' (a server without constructions: update it)"),
+                  address);
 }
 
 EstimatedDirection ToDirection(const v1::EstimatedDirection& d) {
@@ -275,7 +290,11 @@ StatusOr<AlignedSet> ServiceClient::GetAlignedSet(const SetRequest& request,
   v1::AlignedSetResponse resp;
   grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(request), &resp);
   if (!s.ok()) return impl_->Fail(s);
-  return FromResponse(&resp);
+  auto set = FromResponse(&resp);
+  if (set.ok()) {
+    if (Status c = CheckConstruction(request, set->info, impl_->options.address); !c.ok()) return c;
+  }
+  return set;
 }
 
 namespace {
@@ -317,6 +336,14 @@ StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector
   if (out.ok() && out->size() != items.size()) {
     return Status::Internal("the server answered " + std::to_string(out->size()) + " items for " +
                             std::to_string(items.size()));
+  }
+  if (out.ok()) {
+    for (size_t i = 0; i < items.size(); ++i) {
+      BatchItem& item = (*out)[i];
+      if (!item.status.ok()) continue;
+      item.status = CheckConstruction(items[i], item.set.info, impl_->options.address);
+      if (!item.status.ok()) item.set = AlignedSet{};
+    }
   }
   return out;
 }
@@ -368,6 +395,11 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
   grpc::Status s = reader->Finish();
   if (!s.ok()) return impl_->Fail(s);
   if (!result) return Status::Internal("the server ended the stream without a set");
+  if (result->ok()) {
+    if (Status c = CheckConstruction(request, (*result)->info, impl_->options.address); !c.ok()) {
+      return c;
+    }
+  }
   return std::move(*result);
 }
 
@@ -392,6 +424,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_shard_count(spec.shard_count);
   req.set_realizations(spec.realizations);
   req.set_steps_per_degree(spec.steps_per_degree);
+  req.set_construction(spec.construction);
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, false, call);
   auto reader = impl_->stub->Precompute(&ctx, req);

@@ -95,6 +95,31 @@ class ServerTest(unittest.TestCase):
         self.assertEqual(space.shape, (46, 32, 2))
         np.testing.assert_array_equal(space[17], self.client.get(32, 17))
 
+    def test_lattice_construction(self):
+        s = self.client.get_set(256, 30, construction="lattice")
+        self.assertEqual(s.metadata.construction, "lattice")
+        self.assertEqual(s.metadata.key.profile, "lattice-v1-w1")
+        # A centred N-rooks set: one point in the middle of each column and row.
+        cells = s.points * 256 - 0.5
+        np.testing.assert_allclose(cells, np.round(cells), atol=1e-9)
+        for axis in (0, 1):
+            self.assertEqual(len(set(np.round(cells[:, axis]).astype(int))), 256)
+        again = self.client.get_set(256, 30, construction="lattice")
+        self.assertTrue(again.metadata.from_cache)
+        np.testing.assert_array_equal(again.points, s.points)
+        # The optimized set of the same key is another set under another profile.
+        optimized = self.client.get_set(256, 30)
+        self.assertEqual(optimized.metadata.construction, "optimized")
+        self.assertNotEqual(optimized.metadata.key.profile, "lattice-v1-w1")
+        self.assertFalse(np.array_equal(optimized.points, s.points))
+        space = self.client.get_space(32, construction="lattice")
+        self.assertEqual(space.shape, (46, 32, 2))
+        np.testing.assert_array_equal(space[17], self.client.get(32, 17, construction="lattice"))
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(64, 30, construction="sobol")
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertIn("'lattice'", e.exception.message)
+
     def test_baseline_samples(self):
         a = self.client.samples("owen-sobol", 64, seed=3)
         self.assertEqual(a.shape, (64, 2))

@@ -84,6 +84,10 @@ struct SetInfo {
   double optimize_seconds = 0.0;
   int iterations = 0;
   std::string engine;
+  // "optimized" or "lattice" (SetRequest::construction). A lattice has
+  // engine "lattice", iterations and losses 0, no optimization parameters,
+  // seed = its realization, algorithm_version the lattice construction's.
+  std::string construction = "optimized";
 };
 
 struct AlignedSet {
@@ -105,6 +109,12 @@ struct SetRequest {
   // (--angle-step, quarter degrees unless set), 1 whole degrees (the 46
   // keys), 4 quarter degrees (181 keys). Two directions: whole degrees.
   uint32_t steps_per_degree = 0;
+  // How the set is made: "" or "optimized" (the default, the optimized
+  // sets), or "lattice" (an aligned rank-1 lattice, cached apart from the
+  // optimized sets). Another name: INVALID_ARGUMENT from the server. A server
+  // too old to know constructions would answer with an optimized set; the
+  // client then fails the call with FAILED_PRECONDITION instead.
+  std::string construction = "";
 };
 
 // One answer of a batch: the set, or why this item has none. Items fail on
@@ -143,6 +153,8 @@ struct PrecomputeSpec {
   // Realizations 0 .. realizations-1 of every key (at most
   // SetRequest::kMaxRealization + 1).
   uint32_t realizations = 1;
+  // The construction of every item, as SetRequest::construction.
+  std::string construction = "";
 };
 
 struct PrecomputeUpdate {

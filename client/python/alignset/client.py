@@ -44,9 +44,21 @@ def _directions(directions):
     return [float(d) for d in directions]
 
 
-def _request(n, directions, realization=0):
+def _request(n, directions, realization=0, construction=""):
     return pb.AlignedSetRequest(n=int(n), directions_deg=_directions(directions),
-                                realization=int(realization))
+                                realization=int(realization), construction=construction or "")
+
+
+def _checked(aligned, construction):
+    # A server from before constructions ignores the field and answers with
+    # an optimized set: refuse it rather than pass it off as a lattice.
+    asked = construction or "optimized"
+    got = aligned.metadata.construction or "optimized"
+    if got != asked:
+        raise AlignSetError(grpc.StatusCode.FAILED_PRECONDITION,
+                            "asked for construction '%s', the server answered '%s' "
+                            "(a server without constructions: update it)" % (asked, got))
+    return aligned
 
 
 def _aligned(response):
@@ -91,55 +103,63 @@ class Client:
         except grpc.RpcError as e:
             raise AlignSetError(e.code(), e.details()) from None
 
-    def get_set(self, n, directions, realization=0, timeout=None):
+    def get_set(self, n, directions, realization=0, timeout=None, construction=None):
         """The aligned set for n points and one or two directions (degrees),
         with its metadata. `realization` (0..63) picks one of the key's
-        independent sets; 0 is the key's first. Blocks while the server
+        independent sets; 0 is the key's first. `construction`: None or
+        "optimized" (the default, the optimized sets) or "lattice" (an aligned
+        rank-1 lattice, cached apart from them). Blocks while the server
         optimizes a missing set."""
-        request = _request(n, directions, realization)
-        return _aligned(self._call(self._stub.GetAlignedSet, request, timeout))
+        request = _request(n, directions, realization, construction)
+        return _checked(_aligned(self._call(self._stub.GetAlignedSet, request, timeout)),
+                        construction)
 
-    def get(self, n, directions, realization=0, timeout=None):
+    def get(self, n, directions, realization=0, timeout=None, construction=None):
         """The points alone: an (n, 2) float64 array."""
-        return self.get_set(n, directions, realization, timeout).points
+        return self.get_set(n, directions, realization, timeout, construction).points
 
-    def get_many(self, items, timeout=None):
+    def get_many(self, items, timeout=None, construction=None):
         """Many sets in one call: items are (n, directions) or (n, directions,
-        realization) tuples. Returns one entry per item, in order: an
-        AlignedSet, or the AlignSetError of that item (not raised: the other
-        items stand)."""
-        request = pb.AlignedSetsRequest(items=[_request(*item) for item in items])
-        return self._batch(request, timeout)
+        realization) tuples, all of one `construction` (as in get_set).
+        Returns one entry per item, in order: an AlignedSet, or the
+        AlignSetError of that item (not raised: the other items stand)."""
+        request = pb.AlignedSetsRequest(
+            items=[_request(*item, construction=construction) for item in items])
+        return self._batch(request, timeout, construction)
 
-    def get_realizations(self, n, directions, count, timeout=None):
+    def get_realizations(self, n, directions, count, timeout=None, construction=None):
         """Realizations 0..count-1 of one key as a (count, n, 2) array, in one
         call (the server optimizes the missing ones in parallel)."""
-        results = self.get_many([(n, directions, r) for r in range(count)], timeout)
+        results = self.get_many([(n, directions, r) for r in range(count)], timeout, construction)
         for r in results:
             if isinstance(r, AlignSetError):
                 raise r
         return np.stack([r.points for r in results])
 
-    def get_space(self, n, realization=0, timeout=None):
+    def get_space(self, n, realization=0, timeout=None, construction=None):
         """The 46 canonical one-direction sets of n points (directions 0..45
         degrees) as one (46, n, 2) array; every other direction is one of them
         swapped and / or mirrored."""
         request = pb.AlignedSetsRequest(space=pb.ONE_DIRECTION, space_n=int(n),
-                                        space_realization=int(realization))
-        results = self._batch(request, timeout)
+                                        space_realization=int(realization),
+                                        space_construction=construction or "")
+        results = self._batch(request, timeout, construction)
         for r in results:
             if isinstance(r, AlignSetError):
                 raise r
         return np.stack([r.points for r in results])
 
-    def _batch(self, request, timeout):
+    def _batch(self, request, timeout, construction=None):
         response = self._call(self._stub.GetAlignedSets, request, timeout)
         out = []
         for item in response.items:
             if item.code != 0:
                 out.append(AlignSetError(_CODES.get(item.code, grpc.StatusCode.UNKNOWN), item.message))
             else:
-                out.append(_aligned(item.set))
+                try:
+                    out.append(_checked(_aligned(item.set), construction))
+                except AlignSetError as e:
+                    out.append(e)
         return out
 
     def estimate_direction(self, values, points=None, second=False, timeout=None):
