@@ -87,6 +87,12 @@ int Run(RenderOptions& o) {
   std::printf("wrote %s: %s, %lldx%lld, %s, N = %u\n", o.request.out.c_str(), o.request.scene.c_str(),
               static_cast<long long>(o.size), static_cast<long long>(o.size), o.request.sampler.c_str(),
               o.request.spp);
+  if (summary->prepass_per_pixel > 0) {
+    std::printf("samples per pixel: %u + %u pre-pass = %u\n", summary->samples_per_pixel,
+                summary->prepass_per_pixel, summary->total_per_pixel());
+  } else {
+    std::printf("samples per pixel: %u\n", summary->samples_per_pixel);
+  }
   std::printf("MSE against the exact image: edge pixels %.4g, smooth pixels %.4g, all %.4g\n",
               summary->mse_edge, summary->mse_smooth, summary->mse_all);
   if (!summary->note.empty()) std::printf("%s\n", summary->note.c_str());

@@ -97,7 +97,9 @@ StatusOr<RenderSummary> RunRender(
     c.tile = &tile;
     summary.note = "64x64 shift tile optimized for N = " + std::to_string(r.spp);
   }
+  summary.samples_per_pixel = r.spp;
   if (uses_estimate) {
+    summary.prepass_per_pixel = static_cast<uint32_t>(estimator->evaluations());
     summary.note += (summary.note.empty() ? "" : "; ") + std::string("directions: ") +
                     estimator->name() + " (" + std::to_string(estimator->evaluations()) +
                     " evaluations per pixel)";

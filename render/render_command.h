@@ -33,6 +33,12 @@ struct RenderRequest {
 struct RenderSummary {
   double mse_edge = 0.0, mse_smooth = 0.0, mse_all = 0.0;
   double seconds = 0.0;
+  // The sample budget, every sample counted: the sampler's N plus the
+  // integrand evaluations its direction pre-pass spent on each pixel (0 for
+  // samplers that read no estimated direction).
+  uint32_t samples_per_pixel = 0;
+  uint32_t prepass_per_pixel = 0;
+  uint32_t total_per_pixel() const { return samples_per_pixel + prepass_per_pixel; }
   std::string note;  // one line on what was used (estimator, sets fetched, tile)
 };
 

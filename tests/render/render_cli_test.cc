@@ -58,6 +58,24 @@ TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
   EXPECT_EQ(RunCli("render --size 16 --sampler screen-space-rank1 -n 8 -o " + dir_ + "/s.npy").exit_code, 0);
 }
 
+TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
+  // A sampler that estimates the pixel's direction pays for its pre-pass
+  // (grid16: 256 evaluations); one that does not reports N alone.
+  CliRun r = RunCli("render --size 12 --sampler aligned-lattice -n 64 -o " + dir_ + "/l.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 256 pre-pass = 320\n"), std::string::npos) << Said(r);
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid8 -o " + dir_ + "/l8.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass = 128\n"), std::string::npos) << Said(r);
+  r = RunCli("render --size 12 --sampler aligned-lattice-exact -n 64 -o " + dir_ + "/le.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);
+  r = RunCli("render --size 12 --sampler owen-sobol -n 64 -o " + dir_ + "/os.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);
+  EXPECT_EQ(Said(r).find("pre-pass"), std::string::npos) << Said(r);
+}
+
 TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
   for (const std::string& args :
        {std::string("render --sampler no-such -n 16 -o x.npy"), std::string("render --sampler owen-sobol -o x.npy"),
