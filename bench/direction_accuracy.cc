@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
     const Stats s = Run(cases, def, make, Theta);
     Row("noisy step 64x64, 16 random samples per cell", s.errors, s.none);
   }
-  for (int m : {256, 1024, 4096}) {
+  for (int m : {64, 256, 1024, 4096}) {
     auto make = [m](const Case& c) { return RandomSamples(Step(c), m, c.seed); };
     const Stats s = Run(cases, def, make, Theta);
     Row("scattered step, " + std::to_string(m) + " random samples", s.errors, s.none);

@@ -47,6 +47,7 @@ def main():
     ap.add_argument("--seeds", required=True)
     ap.add_argument("--n", required=True)
     ap.add_argument("--prepass-evals", type=int, default=256)
+    ap.add_argument("--prepass", default="grid16c50")
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
     seeds = a.seeds.split()
@@ -68,7 +69,7 @@ def main():
     out.append("Written by `bench/render/seed_table.py` from `bash bench/render/seeds.sh` "
                "(SEEDS=\"%s\", N=%s). Each seed is a different scene; 128×128 pixels; the "
                "direction of `aligned` and `aligned-lattice` is estimated per pixel from a "
-               "pre-pass of %d evaluations (grid16), which the *total spp* column counts; "
+               "pre-pass of %d evaluations (%s), which the *total spp* column counts; "
                "the `-exact` rows read the geometry's direction (a bound, no pre-pass). "
                "Ratios are Owen-Sobol's MSE over the sampler's (above 1: the sampler wins), "
                "the geometric mean over seeds with the range in brackets. The *OS / sampler* "
@@ -76,7 +77,7 @@ def main():
                "the last two compare at the same total samples per pixel, the baselines "
                "rendered again at N + the pre-pass (the best of Owen-Sobol, pmj02bn, rank-1 "
                "lattice and screen-space rank-1 per seed).\n"
-               % (" ".join(seeds), a.n, a.prepass_evals))
+               % (" ".join(seeds), a.n, a.prepass_evals, a.prepass))
     for scene in scenes:
         for n in ns:
             out.append("\n## %s, N = %d\n" % (scene, n))

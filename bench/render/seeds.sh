@@ -8,6 +8,7 @@
 #
 #   bash bench/render/seeds.sh                       # seeds 1 2 3
 #   SEEDS="4 5" N=1024 bash bench/render/seeds.sh    # others
+#   PREPASS=grid8c50 N=256 SAMPLERS=owen-sobol,aligned-lattice bash bench/render/seeds.sh
 #
 # Two-direction sets up to TWO_MAX_N (default 1024; the optimized sets at
 # 4096 take about 40 minutes per seed); the policy is the same for every
@@ -23,7 +24,14 @@ RAW="${RAW:-$BUILD_DIR/render-seeds}"
 OUT="${OUT:-bench/results/render_seeds.md}"
 TWO_MAX_N="${TWO_MAX_N:-1024}"
 THREADS="${THREADS:-2}"
-PREPASS_EVALS=256
+# The direction estimator's pre-pass (render/spectral_estimator.h): gridG and
+# jgridG cost G*G evaluations a pixel, samplesM M.
+PREPASS="${PREPASS:-grid16c50}"
+PREPASS_EVALS=$(/usr/bin/python3 -c "
+import re, sys
+m = re.match(r'(j?grid|samples)(\d+)', sys.argv[1])
+if not m: sys.exit('seeds.sh: cannot read the pre-pass ' + sys.argv[1])
+k = int(m.group(2)); print(k if m.group(1) == 'samples' else k * k)" "$PREPASS")
 
 cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
 mkdir -p "$BUILD_DIR/render-cache" "$RAW"
@@ -37,12 +45,12 @@ echo "seeds: alignset-server on $ADDR"
 counted_n=$(/usr/bin/python3 -c "import sys; print(','.join(str(int(n) + $PREPASS_EVALS) for n in sys.argv[1].split(',')))" "$N")
 for seed in $SEEDS; do
   common=(--server "$ADDR" --threads "$THREADS" --seed "$seed" --line-rates 0 --alt-prepass ""
-          --compare-prepass "" --image-n "" --two-max-n "$TWO_MAX_N")
+          --compare-prepass "" --image-n "" --two-max-n "$TWO_MAX_N" --prepass "$PREPASS")
   "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed" --n "$N" \
     --samplers "$SAMPLERS"
   "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed-counted" \
     --n "$counted_n" --samplers "$COUNTED"
 done
 /usr/bin/python3 bench/render/seed_table.py --raw "$RAW" --seeds "$SEEDS" --n "$N" \
-  --prepass-evals "$PREPASS_EVALS" --out "$OUT"
+  --prepass-evals "$PREPASS_EVALS" --prepass "$PREPASS" --out "$OUT"
 echo "seeds: wrote $OUT"
