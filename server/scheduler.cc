@@ -505,9 +505,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     if (!run.ok()) {
       metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
       spdlog::error("optimize failed {}: {}", job->name, run.status().message());
-      std::lock_guard<std::mutex> lock(mu_);
-      job->status = Status::Internal("optimization failed: " + run.status().message());
-      return SliceEnd::kDone;
+      return Finish(job, Status::Internal("optimization failed: " + run.status().message()), nullptr);
     }
     {
       std::lock_guard<std::mutex> lock(mu_);
@@ -570,16 +568,27 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     record.iterations = result.iterations;
     record.optimize_seconds = seconds;
     record.engine = engine->name();
-    record.created_unix = static_cast<int64_t>(std::time(nullptr));
-    const bool stored = Store(record, job->name);
-    metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
-    metrics_->RecordOptimization(seconds);
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
                  job->name, record.loss.total, record.loss.spectrum, record.loss.sw,
                  record.iterations, seconds);
-    entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
-    lru_.Put(job->name, entry);
+    entry = Complete(job->name, std::move(record));
   }
+  return Finish(job, status, std::move(entry));
+}
+
+std::shared_ptr<const CanonicalEntry> Scheduler::Complete(const std::string& name,
+                                                          storage::SetRecord record) {
+  record.created_unix = static_cast<int64_t>(std::time(nullptr));
+  const bool stored = Store(record, name);
+  metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
+  metrics_->RecordOptimization(record.optimize_seconds);
+  auto entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
+  lru_.Put(name, entry);
+  return entry;
+}
+
+Scheduler::SliceEnd Scheduler::Finish(const std::shared_ptr<Job>& job, const Status& status,
+                                      std::shared_ptr<const CanonicalEntry> entry) {
   std::lock_guard<std::mutex> lock(mu_);
   job->status = status;
   job->entry = std::move(entry);
@@ -625,10 +634,7 @@ Scheduler::SliceEnd Scheduler::FillSlice(const std::shared_ptr<Job>& job) {
     spdlog::warn("fill {} from the writer: {}", job->name, record.status().message());
     status = record.status();
   }
-  std::lock_guard<std::mutex> lock(mu_);
-  job->status = status;
-  job->entry = std::move(entry);
-  return SliceEnd::kDone;
+  return Finish(job, status, std::move(entry));
 }
 
 Scheduler::SliceEnd Scheduler::LatticeSlice(const std::shared_ptr<Job>& job) {
@@ -661,20 +667,12 @@ Scheduler::SliceEnd Scheduler::LatticeSlice(const std::shared_ptr<Job>& job) {
     record.iterations = 0;
     record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     record.engine = "lattice";
-    record.created_unix = static_cast<int64_t>(std::time(nullptr));
     job->run_seconds += record.optimize_seconds;
-    const bool stored = Store(record, job->name);
-    metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
-    metrics_->RecordOptimization(record.optimize_seconds);
     spdlog::info("lattice done {} generator={} score={:.6g} candidates={} {:.3f} s", job->name,
                  choice->generator, choice->score, choice->candidates, record.optimize_seconds);
-    entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
-    lru_.Put(job->name, entry);
+    entry = Complete(job->name, std::move(record));
   }
-  std::lock_guard<std::mutex> lock(mu_);
-  job->status = status;
-  job->entry = std::move(entry);
-  return SliceEnd::kDone;
+  return Finish(job, status, std::move(entry));
 }
 
 bool Scheduler::InFlight(const std::string& key_name) const {

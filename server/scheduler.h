@@ -212,6 +212,12 @@ class Scheduler {
   // Writes a finished set (a writer), making room first when the file is
   // bounded; false when it was not stored.
   bool Store(const storage::SetRecord& record, const std::string& name);
+  // A finished set: stamped, stored (when it can be), counted, and put in
+  // the memory cache; the entry every waiter of the key gets.
+  std::shared_ptr<const CanonicalEntry> Complete(const std::string& name, storage::SetRecord record);
+  // Hands the job's outcome to its waiters.
+  SliceEnd Finish(const std::shared_ptr<Job>& job, const Status& status,
+                  std::shared_ptr<const CanonicalEntry> entry);
   void Release(const std::shared_ptr<Job>& job, const Ticket* ticket);
   // mu_ held; what the job's waiters asked to run goes into `callbacks`.
   void FinishLocked(const std::shared_ptr<Job>& job, Callbacks* callbacks);
