@@ -175,20 +175,8 @@ int RunGetSpace(const GetOptions& o) {
     std::fprintf(stderr, "alignset get: the one-direction space of N = %lld (46 sets) in one call\n",
                  static_cast<long long>(o.n));
   }
-  StatusOr<std::vector<BatchItem>> batch = Status::Internal("no call");
-  if (o.construction == "optimized") {
-    batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
-                                            static_cast<uint32_t>(o.realization));
-  } else {
-    // Another construction: the same 46 keys as explicit items (the
-    // library's space call has no construction).
-    std::vector<SetRequest> items;
-    for (int k = 0; k <= 45; ++k) {
-      items.push_back({static_cast<uint32_t>(o.n), {static_cast<double>(k)},
-                       static_cast<uint32_t>(o.realization), 1, o.construction});
-    }
-    batch = (*client)->GetAlignedSets(items);
-  }
+  auto batch = (*client)->GetOneDirectionSpace(static_cast<uint32_t>(o.n),
+                                               static_cast<uint32_t>(o.realization), o.construction);
   if (!batch.ok()) return Failure(batch.status());
   std::vector<PointSet> points;
   std::string comment = "alignset one-direction space: set k is the canonical set for phi = k deg "

@@ -246,14 +246,22 @@ v1::AlignedSetRequest MakeRequest(const SetRequest& r) {
 
 // A server that does not know constructions ignores the field and serves an
 // optimized set: refuse that answer rather than pass it off as a lattice.
-Status CheckConstruction(const SetRequest& r, const SetInfo& info, const std::string& address) {
-  const std::string asked = r.construction.empty() ? "optimized" : r.construction;
+Status CheckConstruction(const std::string& construction, const SetInfo& info,
+                         const std::string& address) {
+  const std::string asked = construction.empty() ? "optimized" : construction;
   if (info.construction == asked) return Status::Ok();
   return FromGrpc(grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
                                "asked for construction '" + asked + "', the server answered '" +
                                    info.construction +
                                    "' (a server without constructions: update it)"),
                   address);
+}
+
+// The same for one item of a batch: a wrong answer becomes that item's error.
+void CheckConstruction(const std::string& construction, BatchItem* item, const std::string& address) {
+  if (!item->status.ok()) return;
+  item->status = CheckConstruction(construction, item->set.info, address);
+  if (!item->status.ok()) item->set = AlignedSet{};
 }
 
 EstimatedDirection ToDirection(const v1::EstimatedDirection& d) {
@@ -292,7 +300,9 @@ StatusOr<AlignedSet> ServiceClient::GetAlignedSet(const SetRequest& request,
   if (!s.ok()) return impl_->Fail(s);
   auto set = FromResponse(&resp);
   if (set.ok()) {
-    if (Status c = CheckConstruction(request, set->info, impl_->options.address); !c.ok()) return c;
+    if (Status c = CheckConstruction(request.construction, set->info, impl_->options.address); !c.ok()) {
+      return c;
+    }
   }
   return set;
 }
@@ -339,10 +349,7 @@ StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector
   }
   if (out.ok()) {
     for (size_t i = 0; i < items.size(); ++i) {
-      BatchItem& item = (*out)[i];
-      if (!item.status.ok()) continue;
-      item.status = CheckConstruction(items[i], item.set.info, impl_->options.address);
-      if (!item.status.ok()) item.set = AlignedSet{};
+      CheckConstruction(items[i].construction, &(*out)[i], impl_->options.address);
     }
   }
   return out;
@@ -351,11 +358,23 @@ StatusOr<std::vector<BatchItem>> ServiceClient::GetAlignedSets(const std::vector
 StatusOr<std::vector<BatchItem>> ServiceClient::GetOneDirectionSpace(uint32_t n,
                                                                      uint32_t realization,
                                                                      const CallOptions& call) {
+  return GetOneDirectionSpace(n, realization, "", call);
+}
+
+StatusOr<std::vector<BatchItem>> ServiceClient::GetOneDirectionSpace(uint32_t n,
+                                                                     uint32_t realization,
+                                                                     const std::string& construction,
+                                                                     const CallOptions& call) {
   v1::AlignedSetsRequest req;
   req.set_space(v1::ONE_DIRECTION);
   req.set_space_n(n);
   req.set_space_realization(realization);
-  return impl_->Batch(req, call);
+  req.set_space_construction(construction);
+  auto out = impl_->Batch(req, call);
+  if (out.ok()) {
+    for (BatchItem& item : *out) CheckConstruction(construction, &item, impl_->options.address);
+  }
+  return out;
 }
 
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
@@ -396,7 +415,8 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
   if (!s.ok()) return impl_->Fail(s);
   if (!result) return Status::Internal("the server ended the stream without a set");
   if (result->ok()) {
-    if (Status c = CheckConstruction(request, (*result)->info, impl_->options.address); !c.ok()) {
+    if (Status c = CheckConstruction(request.construction, (*result)->info, impl_->options.address);
+        !c.ok()) {
       return c;
     }
   }

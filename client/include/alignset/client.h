@@ -238,6 +238,12 @@ class ServiceClient {
   // realization.
   StatusOr<std::vector<BatchItem>> GetOneDirectionSpace(uint32_t n, uint32_t realization = 0,
                                                         const CallOptions& call = {});
+  // The same space in a construction (SetRequest::construction): an item a
+  // server without constructions answers with another one fails with
+  // FAILED_PRECONDITION.
+  StatusOr<std::vector<BatchItem>> GetOneDirectionSpace(uint32_t n, uint32_t realization,
+                                                        const std::string& construction,
+                                                        const CallOptions& call = {});
   // Streams queue position and progress to `on_update`, then returns the set.
   StatusOr<AlignedSet> WatchAlignedSet(uint32_t n, const std::vector<double>& directions_deg,
                                        const std::function<void(const WatchUpdate&)>& on_update,
