@@ -5,7 +5,10 @@ against Owen-Sobol at the same N and, for the samplers that spend a pre-pass
 on the pixel's direction, against every baseline at the same total number
 of samples per pixel (N + the pre-pass).
 
-  seed_table.py --raw DIR --seeds "1 2 3" --n 256,1024,4096 --prepass-evals 256 --out FILE.md
+  seed_table.py --raw DIR --seeds "1 2 3" --n 256,1024,4096 --out FILE.md
+
+The pre-pass and its evaluations per pixel come from each seed's
+estimator.csv (render_bench's record of the estimator it ran).
 """
 import argparse
 import csv
@@ -46,12 +49,17 @@ def main():
     ap.add_argument("--raw", required=True)
     ap.add_argument("--seeds", required=True)
     ap.add_argument("--n", required=True)
-    ap.add_argument("--prepass-evals", type=int, default=256)
-    ap.add_argument("--prepass", default="grid16c50")
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
     seeds = a.seeds.split()
     ns = [int(n) for n in a.n.split(",")]
+    prepasses = set()
+    for s in seeds:
+        with open(os.path.join(a.raw, "seed" + s, "estimator.csv")) as f:
+            prepasses |= {(r["prepass"], int(r["evaluations"])) for r in csv.DictReader(f)}
+    if len(prepasses) != 1:
+        sys.exit("seed_table.py: the seeds ran different pre-passes: %s" % sorted(prepasses))
+    prepass, prepass_evals = prepasses.pop()
     runs = {}
     for s in seeds:
         runs[s] = read(os.path.join(a.raw, "seed" + s, "render_errors.csv"))
@@ -77,7 +85,7 @@ def main():
                "the last two compare at the same total samples per pixel, the baselines "
                "rendered again at N + the pre-pass (the best of Owen-Sobol, pmj02bn, rank-1 "
                "lattice and screen-space rank-1 per seed).\n"
-               % (" ".join(seeds), a.n, a.prepass_evals, a.prepass))
+               % (" ".join(seeds), a.n, prepass_evals, prepass))
     for scene in scenes:
         for n in ns:
             out.append("\n## %s, N = %d\n" % (scene, n))
@@ -90,7 +98,7 @@ def main():
                 if any(p is None for p in per):
                     continue
                 os_ = [runs[s].get((scene, "owen-sobol", n)) for s in seeds]
-                total = n + (a.prepass_evals if smp in ESTIMATED else 0)
+                total = n + (prepass_evals if smp in ESTIMATED else 0)
                 edge = [float(p["mse_edge"]) for p in per]
                 r_edge = [float(o["mse_edge"]) / e for o, e in zip(os_, edge) if o and e > 0]
                 r_smooth = [float(o["mse_smooth"]) / float(p["mse_smooth"])

@@ -24,14 +24,9 @@ RAW="${RAW:-$BUILD_DIR/render-seeds}"
 OUT="${OUT:-bench/results/render_seeds.md}"
 TWO_MAX_N="${TWO_MAX_N:-1024}"
 THREADS="${THREADS:-2}"
-# The direction estimator's pre-pass (render/spectral_estimator.h): gridG and
-# jgridG cost G*G evaluations a pixel, samplesM M.
+# The direction estimator's pre-pass (render/spectral_estimator.h); what it
+# costs a pixel is read from the estimator.csv render_bench writes.
 PREPASS="${PREPASS:-grid16c50}"
-PREPASS_EVALS=$(/usr/bin/python3 -c "
-import re, sys
-m = re.match(r'(j?grid|samples)(\d+)', sys.argv[1])
-if not m: sys.exit('seeds.sh: cannot read the pre-pass ' + sys.argv[1])
-k = int(m.group(2)); print(k if m.group(1) == 'samples' else k * k)" "$PREPASS")
 
 cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
 mkdir -p "$BUILD_DIR/render-cache" "$RAW"
@@ -42,15 +37,19 @@ start_loopback_server 30 "$LOG" "$BUILD_DIR/server/alignset-server" \
   --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
 echo "seeds: alignset-server on $ADDR"
 
-counted_n=$(/usr/bin/python3 -c "import sys; print(','.join(str(int(n) + $PREPASS_EVALS) for n in sys.argv[1].split(',')))" "$N")
 for seed in $SEEDS; do
   common=(--server "$ADDR" --threads "$THREADS" --seed "$seed" --line-rates 0 --alt-prepass ""
           --compare-prepass "" --image-n "" --two-max-n "$TWO_MAX_N" --prepass "$PREPASS")
   "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed" --n "$N" \
     --samplers "$SAMPLERS"
+  counted_n=$(/usr/bin/python3 -c "
+import csv, sys
+evals = {int(r['evaluations']) for r in csv.DictReader(open(sys.argv[1]))}
+assert len(evals) == 1, evals
+p = evals.pop()
+print(','.join(str(int(n) + p) for n in sys.argv[2].split(',')))" "$RAW/seed$seed/estimator.csv" "$N")
   "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed-counted" \
     --n "$counted_n" --samplers "$COUNTED"
 done
-/usr/bin/python3 bench/render/seed_table.py --raw "$RAW" --seeds "$SEEDS" --n "$N" \
-  --prepass-evals "$PREPASS_EVALS" --prepass "$PREPASS" --out "$OUT"
+/usr/bin/python3 bench/render/seed_table.py --raw "$RAW" --seeds "$SEEDS" --n "$N" --out "$OUT"
 echo "seeds: wrote $OUT"
