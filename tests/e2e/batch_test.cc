@@ -25,13 +25,7 @@ class BatchTest : public ::testing::Test {
     server_ = std::make_unique<ServerProcess>(dir_.path(), flags);
     ASSERT_EQ(server_->error(), "");
   }
-  std::unique_ptr<ServiceClient> Client() {
-    ConnectOptions o;
-    o.address = server_->address();
-    auto c = ServiceClient::Connect(o);
-    EXPECT_TRUE(c.ok());
-    return std::move(c).value();
-  }
+  std::unique_ptr<ServiceClient> Client() { return ConnectTo(*server_); }
   grpc::Status RawBatch(const v1::AlignedSetsRequest& req, v1::AlignedSetsResponse* resp) {
     auto stub = v1::AlignSet::NewStub(
         grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials()));

@@ -34,14 +34,6 @@ const std::vector<std::string> kFlags = {"--max-iterations", "60", "--workers", 
                                          "--threads-per-worker", "1", "--max-n", "4096"};
 constexpr const char* kLatticeProfile = "lattice-v1-w1";
 
-std::unique_ptr<ServiceClient> ClientOf(const ServerProcess& server) {
-  ConnectOptions o;
-  o.address = server.address();
-  auto c = ServiceClient::Connect(o);
-  EXPECT_TRUE(c.ok());
-  return std::move(c).value();
-}
-
 AlignedSet MustGet(ServiceClient& client, uint32_t n, double dir, const std::string& construction,
                    uint32_t realization = 0) {
   alignset::SetRequest r;
@@ -127,7 +119,7 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   const uint32_t n = 1024;
   const AlignedSet first = MustGet(*client, n, 30.0, "lattice");
   ASSERT_EQ(first.points.size(), n);
@@ -174,7 +166,7 @@ TEST(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice)
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   const uint32_t n = 1024;
   const uint32_t korobov = Rank1Generator(n);
   std::string why;
@@ -279,7 +271,7 @@ TEST(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {
     EXPECT_TRUE(names_the_known(s.error_message())) << s.error_message();
   }
   // Still serving, both constructions.
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   EXPECT_EQ(MustGet(*client, 256, 30.0, "lattice").info.construction, "lattice");
   EXPECT_EQ(MustGet(*client, 256, 30.0, "optimized").info.construction, "optimized");
   EXPECT_EQ(MustGet(*client, 256, 30.0, "").info.construction, "optimized");
@@ -292,7 +284,7 @@ TEST(Constructions, AnOptimizedRequestIsNeverAnsweredWithTheLattice) {
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   const AlignedSet lattice = MustGet(*client, 256, 30.0, "lattice");
   const AlignedSet optimized = MustGet(*client, 256, 30.0, "");
   EXPECT_NE(optimized.raw, lattice.raw);
@@ -323,7 +315,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   std::string why;
 
   PrecomputeSpec spec;
@@ -398,7 +390,7 @@ TEST(Constructions, AReplicaServesAndFillsLattices) {
     ServerProcess maker(shipped.path(), kFlags);
     ASSERT_EQ(maker.error(), "");
     file = maker.db_path();
-    MustGet(*ClientOf(maker), 64, 10.0, "lattice");
+    MustGet(*ConnectTo(maker), 64, 10.0, "lattice");
   }
   ServerProcess writer(writer_dir.path(), kFlags);
   ASSERT_EQ(writer.error(), "");
@@ -409,8 +401,8 @@ TEST(Constructions, AReplicaServesAndFillsLattices) {
   flags.push_back(writer.address());
   ServerProcess replica(replica_dir.path(), flags);
   ASSERT_EQ(replica.error(), "");
-  auto rc = ClientOf(replica);
-  auto wc = ClientOf(writer);
+  auto rc = ConnectTo(replica);
+  auto wc = ConnectTo(writer);
   const AlignedSet shipped_set = MustGet(*rc, 64, 10.0, "lattice");
   EXPECT_TRUE(shipped_set.info.from_cache);
   std::string why;

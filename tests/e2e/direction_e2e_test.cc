@@ -18,7 +18,6 @@
 namespace alignset::e2e {
 namespace {
 
-using cli::ConnectOptions;
 using cli::ServiceClient;
 
 const std::vector<std::string> kFast = {"--max-iterations", "60", "--workers", "2",
@@ -31,13 +30,7 @@ class DirectionE2eTest : public ::testing::Test {
     server_ = std::make_unique<ServerProcess>(dir_.path(), flags);
     ASSERT_EQ(server_->error(), "");
   }
-  std::unique_ptr<ServiceClient> Client() {
-    ConnectOptions o;
-    o.address = server_->address();
-    auto c = ServiceClient::Connect(o);
-    EXPECT_TRUE(c.ok()) << c.status().message();
-    return std::move(c).value();
-  }
+  std::unique_ptr<ServiceClient> Client() { return ConnectTo(*server_); }
   std::unique_ptr<v1::AlignSet::Stub> RawStub() {
     grpc::ChannelArguments args;
     args.SetMaxSendMessageSize(-1);

@@ -27,14 +27,6 @@ namespace {
 const std::vector<std::string> kFlags = {"--max-iterations", "60", "--workers", "2",
                                          "--threads-per-worker", "1", "--max-n", "4096"};
 
-std::unique_ptr<ServiceClient> ClientOf(const ServerProcess& server) {
-  ConnectOptions o;
-  o.address = server.address();
-  auto c = ServiceClient::Connect(o);
-  EXPECT_TRUE(c.ok());
-  return std::move(c).value();
-}
-
 AlignedSet MustGet(ServiceClient& client, uint32_t n, double dir, uint32_t r) {
   auto s = client.GetAlignedSet(SetRequest{n, {dir}, r});
   EXPECT_TRUE(s.ok()) << s.status().message();
@@ -45,7 +37,7 @@ TEST(Realizations, ZeroIsTheKeysOldSetAndOneDiffers) {
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   const AlignedSet r0 = MustGet(*client, 256, 30.0, 0);
   const AlignedSet r1 = MustGet(*client, 256, 30.0, 1);
   EXPECT_NE(r0.raw, r1.raw);
@@ -87,7 +79,7 @@ TEST(Realizations, EachIsBitStableAcrossARestart) {
   {
     ServerProcess server(dir.path(), kFlags);
     ASSERT_EQ(server.error(), "");
-    auto client = ClientOf(server);
+    auto client = ConnectTo(server);
     for (uint32_t r = 0; r < 3; ++r) first[r] = MustGet(*client, 512, 120.0, r).raw;
   }  // SIGTERM
   EXPECT_NE(first[0], first[1]);
@@ -96,7 +88,7 @@ TEST(Realizations, EachIsBitStableAcrossARestart) {
   {
     ServerProcess server(dir.path(), kFlags);
     ASSERT_EQ(server.error(), "");
-    auto client = ClientOf(server);
+    auto client = ConnectTo(server);
     for (uint32_t r = 0; r < 3; ++r) {
       const AlignedSet s = MustGet(*client, 512, 120.0, r);
       EXPECT_TRUE(s.info.from_cache);
@@ -107,7 +99,7 @@ TEST(Realizations, EachIsBitStableAcrossARestart) {
   {
     ServerProcess server(fresh.path(), kFlags);
     ASSERT_EQ(server.error(), "");
-    auto client = ClientOf(server);
+    auto client = ConnectTo(server);
     for (uint32_t r = 0; r < 3; ++r) {
       const AlignedSet s = MustGet(*client, 512, 120.0, r);
       EXPECT_FALSE(s.info.from_cache);
@@ -133,7 +125,7 @@ TEST(Realizations, PrecomputeOfThreeRealizationsResumesAfterSigkill) {
     db = server.db_path();
     const pid_t pid = server.pid();
     std::atomic<bool> killed{false};
-    auto first = ClientOf(server)->Precompute(spec, [&](const PrecomputeUpdate& u) {
+    auto first = ConnectTo(server)->Precompute(spec, [&](const PrecomputeUpdate& u) {
       if (u.done >= 4 && !killed.exchange(true)) kill(pid, SIGKILL);
     });
     ASSERT_TRUE(killed.load());
@@ -152,7 +144,7 @@ TEST(Realizations, PrecomputeOfThreeRealizationsResumesAfterSigkill) {
   }
   ServerProcess server(dir.path(), flags);
   ASSERT_EQ(server.error(), "");
-  auto client = ClientOf(server);
+  auto client = ConnectTo(server);
   auto second = client->Precompute(spec, nullptr);
   ASSERT_TRUE(second.ok()) << second.status().message();
   EXPECT_EQ(second->total, 12u);
@@ -192,7 +184,7 @@ TEST(Realizations, EveryRealizationMeetsTheQualityBarOfRealizationZero) {
   constexpr int kRealizations = 6;
   std::vector<SetRequest> items;
   for (uint32_t r = 0; r < kRealizations; ++r) items.push_back({kN, {kTheta}, r});
-  auto batch = ClientOf(server)->GetAlignedSets(items);
+  auto batch = ConnectTo(server)->GetAlignedSets(items);
   ASSERT_TRUE(batch.ok()) << batch.status().message();
   double sobol = 0;
   for (int s = 0; s < 4; ++s) {

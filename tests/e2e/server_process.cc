@@ -1,5 +1,6 @@
 #include "tests/e2e/server_process.h"
 
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -95,6 +96,14 @@ CommandResult RunCommand(const std::string& command) {
   const int status = pclose(p);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+std::unique_ptr<ServiceClient> ConnectTo(const ServerProcess& server) {
+  ConnectOptions o;
+  o.address = server.address();
+  auto c = ServiceClient::Connect(o);
+  EXPECT_TRUE(c.ok()) << c.status().message();
+  return c.ok() ? std::move(c).value() : nullptr;
 }
 
 }  // namespace alignset::e2e

@@ -2,8 +2,11 @@
 
 #include <sys/types.h>
 
+#include <memory>
 #include <string>
 #include <vector>
+
+#include <alignset/client.h>
 
 namespace alignset::e2e {
 
@@ -44,6 +47,10 @@ class ServerProcess {
   int metrics_port_ = 0;
   std::string log_path_;
 };
+
+// A client-library connection to `server` with default options; a failure
+// fails the calling test (and gives nullptr).
+std::unique_ptr<ServiceClient> ConnectTo(const ServerProcess& server);
 
 // A fresh directory under /tmp, removed by the destructor.
 class TempDir {
