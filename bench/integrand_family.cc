@@ -7,7 +7,9 @@
 //
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
-//       [--construction optimized|lattice|lattice-start]
+//       [--construction optimized|lattice|lattice-start|warm --warm-root DEG
+//        [--warm-iterations I --warm-lr-scale X --warm-warmup F --warm-anneal R]]
+//       [--first-seed S]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
 //        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
 //        --tolerance T]
@@ -56,6 +58,7 @@ struct Options {
   std::vector<double> theta = {10, 30, 45};
   double theta2 = NAN;
   int seeds = 1;
+  int first_seed = 1;
   int scrambles = 16;
   int shifts = 2048;
   int offsets = 8;
@@ -67,6 +70,16 @@ struct Options {
   // lattice; realizations by seed, nothing cached) or "lattice-start" (the
   // descent from the aligned lattice instead of Owen-Sobol).
   std::string construction = "optimized";
+  // "warm": the set for theta is reached from a cold set at `warm_root`
+  // (same theta2) by a chain of 1-degree steps, each a descent with
+  // WarmStartOptions (the service's key lineage, core/align/key_lineage.h)
+  // from the previous step's set; the knobs below override single options
+  // of it (warm_iterations 0: the profile's warm budget).
+  double warm_root = NAN;
+  int warm_iterations = 0;
+  double warm_lr_scale = 1.0;
+  double warm_warmup = 0.0;
+  double warm_anneal = 1.0;
   int threads = 2;
   OptimizerOptions opt;
   std::string cache = "build/bench-cache";
@@ -100,6 +113,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->theta2 = std::stod(next());
     } else if (a == "--seeds") {
       o->seeds = std::stoi(next());
+    } else if (a == "--first-seed") {
+      o->first_seed = std::stoi(next());
     } else if (a == "--scrambles") {
       o->scrambles = std::stoi(next());
     } else if (a == "--shifts") {
@@ -117,11 +132,21 @@ bool ParseArgs(int argc, char** argv, Options* o) {
     } else if (a == "--construction") {
       o->construction = next();
       if (o->construction != "optimized" && o->construction != "lattice" &&
-          o->construction != "lattice-start") {
-        std::fprintf(stderr,
-                     "integrand_family: --construction is optimized, lattice or lattice-start\n");
+          o->construction != "lattice-start" && o->construction != "warm") {
+        std::fprintf(stderr, "integrand_family: --construction is optimized, lattice, lattice-start "
+                             "or warm\n");
         std::exit(2);
       }
+    } else if (a == "--warm-root") {
+      o->warm_root = std::stod(next());
+    } else if (a == "--warm-iterations") {
+      o->warm_iterations = std::stoi(next());
+    } else if (a == "--warm-anneal") {
+      o->warm_anneal = std::stod(next());
+    } else if (a == "--warm-warmup") {
+      o->warm_warmup = std::stod(next());
+    } else if (a == "--warm-lr-scale") {
+      o->warm_lr_scale = std::stod(next());
     } else if (a == "--stratify") {
       o->opt.stratify_axes = std::stoi(next()) != 0;
     } else if (a == "--kl") {
@@ -160,7 +185,9 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start]\n"
+          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|warm]\n"
+          "  [--warm-root DEG] [--warm-iterations I] [--warm-lr-scale X] [--warm-warmup F]\n"
+          "  [--warm-anneal R] [--first-seed S]\n"
           "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
@@ -341,6 +368,10 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
     << fp.radius << ";tol=" << p.engine_tolerance << ";v=5"
     << (o.construction == "lattice-start" ? ";start=lattice" : "");
+  if (o.construction == "warm") {
+    s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << o.warm_lr_scale << ","
+      << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction;
+  }
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
   char hex[17];
@@ -384,6 +415,15 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   }
   const std::string path = o.cache + "/set-" + Key(o, n, theta, seed) + ".bin";
   PointSet points;
+  if (o.construction == "warm" && std::isnan(o.warm_root)) {
+    std::fprintf(stderr, "integrand_family: --construction warm needs --warm-root\n");
+    std::exit(2);
+  }
+  if (o.construction == "warm" && theta == o.warm_root) {
+    Options cold = o;
+    cold.construction = "optimized";
+    return AlignedSet(cold, n, theta, seed, seconds);
+  }
   if (LoadSet(path, n, &points)) {
     std::printf("# cached %s\n", path.c_str());
     return points;
@@ -394,6 +434,21 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   if (!std::isnan(o.theta2)) problem.directions.push_back(o.theta2);
   problem.seed = static_cast<uint64_t>(seed);
   problem.frequency_params = Params(o, n);
+  OptimizerOptions opt = o.opt;
+  double parent_seconds = 0.0;
+  if (o.construction == "warm") {
+    const double step = theta > o.warm_root ? 1.0 : -1.0;
+    problem.start = AlignedSet(o, n, theta - step, seed, &parent_seconds);
+    opt = WarmStartOptions(o.opt, n, static_cast<int>(problem.directions.size()));
+    if (o.warm_iterations > 0) opt.max_iterations = o.warm_iterations;
+    opt.warmup_fraction = o.warm_warmup;
+    opt.anneal_ratio = o.warm_anneal;
+    if (o.warm_lr_scale != 1.0) {
+      opt.learning_rate =
+          o.warm_lr_scale * DefaultLearningRate(BuildFrequencySet(
+                                *problem.frequency_params, AnisotropyDirections(problem.directions)));
+    }
+  }
   if (o.construction == "lattice-start") {
     auto start = AlignedLattice(n, problem.directions, static_cast<uint64_t>(seed));
     if (!start.ok()) {
@@ -404,7 +459,7 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   }
   FastEngine engine(o.threads);
   const auto t0 = std::chrono::steady_clock::now();
-  auto result = Optimize(problem, o.opt, engine);
+  auto result = Optimize(problem, opt, engine);
   *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!result.ok()) {
     std::fprintf(stderr, "integrand_family: %s\n", result.status().message().c_str());
@@ -468,7 +523,7 @@ int Run(const Options& o) {
     for (uint32_t n : o.n) {
       std::vector<PointSet> sets;
       double opt_seconds = 0.0;
-      for (int s = 1; s <= o.seeds; ++s) {
+      for (int s = o.first_seed; s < o.first_seed + o.seeds; ++s) {
         double t = 0.0;
         sets.push_back(AlignedSet(o, n, theta, s, &t));
         opt_seconds += t;

@@ -57,6 +57,18 @@ const std::vector<Flag>& Flags() {
        "K  optimizer iterations per set (default 0: 1000 up to N = 4096, then growing like sqrt N;\n"
        "                     x1.5 for two directions)",
        IntFlag(&ServerConfig::max_iterations, "max-iterations", 0, 100000000)},
+      {"warm-budget",
+       "F  a key that is not a root of the key lineage continues from its parent's set for F\n"
+       "                     times the iterations (default 0.13; 0: every key from Owen-Sobol)",
+       [](ServerConfig& c, const std::string& v) {
+         auto f = ParseFiniteDouble(v, "--warm-budget");
+         if (!f.ok()) return f.status();
+         if (!(*f >= 0.0 && *f <= 1.0)) {
+           return Status::InvalidArgument("--warm-budget must be in [0, 1], got " + v);
+         }
+         c.warm_budget = *f;
+         return Status::Ok();
+       }},
       {"engine", "E        spectral engine auto|direct|fast|cuda (default auto)",
        [](ServerConfig& c, const std::string& v) {
          auto k = ParseEngineKind(v);

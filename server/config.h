@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/align/canonical.h"
+#include "core/optimize/optimizer.h"
 #include "core/spectral/spectral_engine.h"
 #include "core/util/status.h"
 
@@ -22,6 +23,7 @@ struct ServerConfig {
   int threads_per_worker = 0;  // <= 0: ThreadsPerWorker shares the cores out
   uint32_t max_n = 65536;
   int max_iterations = 0;  // 0: DefaultIterationBudget(N)
+  double warm_budget = OptimizerOptions{}.warm_budget_fraction;  // WarmStartOptions
   EngineKind engine = EngineKind::kAuto;
   uint64_t seed = 1;
   // Optimizations waiting for a worker; a request needing one more gets

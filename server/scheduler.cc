@@ -6,6 +6,7 @@
 #include <ctime>
 #include <iterator>
 
+#include "core/align/key_lineage.h"
 #include "core/optimize/aligned_lattice.h"
 #include "core/optimize/realization.h"
 
@@ -39,6 +40,15 @@ struct Job {
   bool from_cache = false;
   std::unique_ptr<OptimizerRun> run;
   std::map<const Ticket*, std::function<void()>> on_done;
+  // The key lineage (core/align/key_lineage.h) this job optimizes, from the
+  // first key whose parent is at hand (or a root) down to `key`; `chain_next`
+  // is the one running or next. Ancestors are stored as they finish, like
+  // any set, so the next key's lineage starts from them.
+  std::vector<storage::SetKey> chain;
+  size_t chain_next = 0;
+  std::optional<PointSet> warm_start;  // the start of chain[chain_next], aligned
+  int chain_iterations_done = 0;       // iterations of the finished chain members
+  int chain_iterations_total = 0;      // the budgets of the whole chain
 };
 
 namespace {
@@ -496,12 +506,20 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     }
     if (options_.fill) return FillSlice(job);
     if (ConstructionOfProfile(key.profile) == Construction::kLattice) return LatticeSlice(job);
+    if (job->chain.empty()) PlanLineage(job.get());
+    const storage::SetKey& target = job->chain[job->chain_next];
     OptimizationProblem problem;
-    problem.n = key.n;
-    problem.directions = {Phi1Degrees(key.dirs)};
-    if (key.dirs.count == 2) problem.directions.push_back(Phi2Degrees(key.dirs));
-    problem.seed = RealizationSeed(options_.seed, key.realization);
-    auto run = OptimizerRun::Create(problem, options_.optimizer);
+    problem.n = target.n;
+    problem.directions = {Phi1Degrees(target.dirs)};
+    if (target.dirs.count == 2) problem.directions.push_back(Phi2Degrees(target.dirs));
+    problem.seed = RealizationSeed(options_.seed, target.realization);
+    OptimizerOptions options = options_.optimizer;
+    if (job->warm_start) {
+      problem.start = std::move(*job->warm_start);
+      job->warm_start.reset();
+      options = WarmStartOptions(options_.optimizer, target.n, target.dirs.count);
+    }
+    auto run = OptimizerRun::Create(problem, options);
     if (!run.ok()) {
       metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
       spdlog::error("optimize failed {}: {}", job->name, run.status().message());
@@ -512,8 +530,9 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
       job->run = std::move(run).value();
     }
     metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-    spdlog::info("optimize start {} engine={} max_iterations={}", job->name, engine->name(),
-                 EffectiveMaxIterations(options_.optimizer, key.n, key.dirs.count));
+    spdlog::info("optimize start {} engine={} max_iterations={}{}", KeyString(target), engine->name(),
+                 EffectiveMaxIterations(options, target.n, target.dirs.count),
+                 problem.start ? " (warm: from its parent)" : "");
   } else {
     spdlog::debug("optimize resume {} at iteration {}", job->name, job->run->iteration());
   }
@@ -523,6 +542,9 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
       job->run->Resume(*engine, engine_holds_k, [&](const ProgressInfo& p) {
         std::lock_guard<std::mutex> lock(mu_);
         job->progress = p;
+        // One bar for the whole lineage: its members' iterations add up.
+        job->progress.iteration += job->chain_iterations_done;
+        job->progress.max_iterations = std::max(job->chain_iterations_total, job->progress.iteration);
         ++job->version;
         job->cv.notify_all();
         if (job->waiters > 0 && !stopping_) {
@@ -561,19 +583,76 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     status = stopping ? Status::Unavailable("the server is shutting down")
                       : Status::Cancelled("every waiter left");
   } else {
+    const storage::SetKey target = job->chain[job->chain_next];
+    const std::string target_name = KeyString(target);
     storage::SetRecord record;
-    record.key = key;
+    record.key = target;
     record.points = std::move(result.points);
     record.loss = result.final_loss;
     record.iterations = result.iterations;
     record.optimize_seconds = seconds;
     record.engine = engine->name();
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
-                 job->name, record.loss.total, record.loss.spectrum, record.loss.sw,
+                 target_name, record.loss.total, record.loss.spectrum, record.loss.sw,
                  record.iterations, seconds);
-    entry = Complete(job->name, std::move(record));
+    entry = Complete(target_name, std::move(record));
+    if (job->chain_next + 1 < job->chain.size()) {
+      // An ancestor: stored, and the start of the next key down the lineage.
+      const storage::SetKey& child = job->chain[job->chain_next + 1];
+      const auto parent = WarmParent(child.dirs);
+      std::lock_guard<std::mutex> lock(mu_);
+      job->warm_start = Align(entry->record().points, parent->ops);
+      job->chain_iterations_done += result.iterations;
+      ++job->chain_next;
+      job->run.reset();
+      job->run_seconds = 0.0;
+      return SliceEnd::kPaused;
+    }
   }
   return Finish(job, status, std::move(entry));
+}
+
+void Scheduler::PlanLineage(Job* job) {
+  std::vector<storage::SetKey> chain = {job->key};
+  std::optional<PointSet> start;
+  if (options_.optimizer.warm_budget_fraction > 0.0) {
+    for (;;) {
+      const auto parent = WarmParent(chain.back().dirs);
+      if (!parent) break;  // a root: optimized from Owen-Sobol
+      storage::SetKey parent_key = chain.back();
+      parent_key.dirs = parent->parent;
+      if (auto points = HeldSet(parent_key)) {
+        start = Align(*points, parent->ops);
+        break;
+      }
+      chain.push_back(parent_key);
+    }
+  }
+  std::reverse(chain.begin(), chain.end());
+  int total = 0;
+  for (size_t i = 0; i < chain.size(); ++i) {
+    const bool warm = i > 0 || start.has_value();
+    const OptimizerOptions o = warm ? WarmStartOptions(options_.optimizer, chain[i].n, chain[i].dirs.count)
+                                    : options_.optimizer;
+    total += EffectiveMaxIterations(o, chain[i].n, chain[i].dirs.count);
+  }
+  if (chain.size() > 1) {
+    spdlog::info("lineage {}: {} key(s) to optimize first, from {}", job->name, chain.size() - 1,
+                 start ? "a stored parent" : "a root");
+  }
+  std::lock_guard<std::mutex> lock(mu_);
+  job->chain = std::move(chain);
+  job->chain_next = 0;
+  job->warm_start = std::move(start);
+  job->chain_iterations_done = 0;
+  job->chain_iterations_total = total;
+}
+
+std::optional<PointSet> Scheduler::HeldSet(const storage::SetKey& key) {
+  const std::string name = KeyString(key);
+  if (auto hit = lru_.Get(name)) return hit->record().points;
+  if (auto stored = cache_->Get(key); stored.ok()) return std::move(stored->points);
+  return std::nullopt;
 }
 
 std::shared_ptr<const CanonicalEntry> Scheduler::Complete(const std::string& name,

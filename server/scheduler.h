@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -209,6 +210,12 @@ class Scheduler {
   // A lattice key's job: the generator search and the points, in one slice
   // (not paused, not stopped: seconds at most), stored like an optimized set.
   SliceEnd LatticeSlice(const std::shared_ptr<Job>& job);
+  // Sets job->chain: the job's key and the ancestors that must be optimized
+  // before it (none in memory or in the cache), root-most first, and the
+  // warm start of the first when its parent is held.
+  void PlanLineage(Job* job);
+  // The set of a key from the memory cache or SQLite, if either has it.
+  std::optional<PointSet> HeldSet(const storage::SetKey& key);
   // Writes a finished set (a writer), making room first when the file is
   // bounded; false when it was not stored.
   bool Store(const storage::SetRecord& record, const std::string& name);

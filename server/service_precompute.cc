@@ -4,10 +4,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <deque>
 #include <memory>
+#include <numeric>
 #include <thread>
 
+#include "core/align/key_lineage.h"
 #include "server/construction.h"
 #include "server/log_text.h"
 #include "server/service_internal.h"
@@ -101,17 +104,39 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   if (!construction.ok()) return Invalid(construction.status(), "Precompute");
   const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
   // The items are enumerated as they are reached, not listed up front: a
-  // request may name 64 N x 4141 keys x 64 realizations. Item i (N outer,
-  // then keys, realizations inner) belongs to this shard when
-  // i mod shards == shard_index.
+  // request may name 64 N x 4141 keys x 64 realizations. Work order: N
+  // outer, then keys, realizations inner. Lattices take the keys in the
+  // given order and item i belongs to shard i mod shards. Optimized keys are
+  // taken in lineage order (core/align/key_lineage.h: grouped by root, each
+  // group by depth, so every key comes after its parent) and a shard holds
+  // one contiguous block of that order: a shard then finds almost every
+  // key's parent stored by itself instead of recomputing ancestors that
+  // other shards own, and a whole-space run optimizes each key once.
   const uint64_t space_size = space.size();
   const uint64_t per_n = space_size * realizations;
   const uint64_t all = static_cast<uint64_t>(req->n().size()) * per_n;
-  const uint64_t total = req->shard_index() < all ? (all - req->shard_index() + shards - 1) / shards : 0;
+  const bool by_lineage = *construction == Construction::kOptimized;
+  std::vector<uint64_t> order(space_size);
+  std::iota(order.begin(), order.end(), uint64_t{0});
+  uint64_t first = req->shard_index(), step = shards;
+  uint64_t total = req->shard_index() < all ? (all - req->shard_index() + shards - 1) / shards : 0;
+  if (by_lineage) {
+    std::vector<std::pair<size_t, int>> rank(space_size);  // (root's index, depth)
+    for (uint64_t k = 0; k < space_size; ++k) {
+      // Roots are whole-degree keys on either grid.
+      const auto root = CanonicalKeyIndex(LineageRoot(space[k]));
+      rank[k] = {root.ok() ? *root : size_t{0}, LineageDepth(space[k])};
+    }
+    std::stable_sort(order.begin(), order.end(), [&](uint64_t a, uint64_t b) { return rank[a] < rank[b]; });
+    first = all * req->shard_index() / shards;
+    total = all * (req->shard_index() + 1) / shards - first;
+    step = 1;
+  }
   auto item = [&](uint64_t j) {
-    const uint64_t i = req->shard_index() + j * shards;
-    return scheduler_->KeyFor(req->n(static_cast<int>(i / per_n)), space[(i / realizations) % space_size],
-                              static_cast<uint32_t>(i % realizations), *construction);
+    const uint64_t c = first + j * step;
+    return scheduler_->KeyFor(req->n(static_cast<int>(c / per_n)),
+                              space[order[(c / realizations) % space_size]],
+                              static_cast<uint32_t>(c % realizations), *construction);
   };
   const std::string client = ctx->peer();
   spdlog::info("precompute: {} {} items (shard {}/{}) from {}", total, ConstructionName(*construction),

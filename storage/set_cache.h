@@ -20,7 +20,9 @@ namespace alignset::storage {
 // 4: up to N = 4096 the descent asks the engine for 1e-8 instead of 1e-11
 //    (the same path, faster; DefaultEngineTolerance).
 // 5: 1e-7 there (kernel width 8: the same sets within seed noise, faster).
-inline constexpr int kAlgorithmVersion = 5;
+// 6: keys that are not roots of the key lineage continue from their parent's
+//    set for a short descent (core/align/key_lineage.h; WarmStartOptions).
+inline constexpr int kAlgorithmVersion = 6;
 
 // Identifies how a set was made: every optimization parameter and the
 // algorithm version, hashed into a short stable hex id. A changed parameter

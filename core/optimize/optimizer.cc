@@ -89,6 +89,16 @@ Status CheckDistinctDirections(const std::vector<double>& arbitrary) {
   return Status::Ok();
 }
 
+OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
+                                  int arbitrary_directions) {
+  OptimizerOptions warm = cold;
+  const int budget = EffectiveMaxIterations(cold, n, arbitrary_directions);
+  warm.max_iterations =
+      std::max(1, static_cast<int>(std::lround(cold.warm_budget_fraction * budget)));
+  warm.warmup_fraction = 0.0;
+  return warm;
+}
+
 double DefaultLearningRate(const std::vector<Frequency>& k) {
   double vmax = 1.0;
   for (const Frequency& v : k) vmax = std::max(vmax, std::hypot(v.a, v.b));
@@ -186,6 +196,9 @@ static Status ValidateWeighting(const SpectrumWeighting& w) {
 
 Status ValidateOptions(const OptimizerOptions& o) {
   if (o.max_iterations < 0) return Status::InvalidArgument("max_iterations must be >= 0");
+  if (!(o.warm_budget_fraction >= 0.0 && o.warm_budget_fraction <= 1.0)) {
+    return Status::InvalidArgument("warm_budget_fraction must be in [0, 1]");
+  }
   if (!(o.learning_rate >= 0.0) || !std::isfinite(o.learning_rate)) {
     return Status::InvalidArgument("learning_rate must be finite and >= 0");
   }

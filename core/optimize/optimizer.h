@@ -122,6 +122,15 @@ struct OptimizerOptions {
   double min_learning_rate = 1e-7;
   // Call the progress callback every this many iterations (and at the end).
   int progress_every = 10;
+  // The budget of a warm-started descent (WarmStartOptions), as a fraction
+  // of the cold budget. The service starts every key that is not a root of
+  // the key lineage (core/align/key_lineage.h) from its parent's set; 0
+  // optimizes every key from Owen-Sobol. At 0.13 (195 iterations for two
+  // directions at N = 4096, chains up to 10 deep) the aligned and axis edges,
+  // the disk, the triangle and the smooth members are the cold sets' within
+  // a few percent and the CP-shifted random Gaussians 1.25x worse (N = 4096,
+  // 4 seeds; docs/results.md, "Filling the space").
+  double warm_budget_fraction = 0.13;
 };
 
 // alignset's profile before the low-frequency levers (algorithm version 2):
@@ -146,6 +155,14 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
 // were still 8-13% above converged after 1000 iterations at N = 4096 and
 // within 3% after 1500 (4 seeds, bench/results/two_directions_budget.txt).
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
+
+// The options of a descent that continues from a neighbouring key's set:
+// `cold`'s budget times warm_budget_fraction (at least one iteration), no
+// warm-up phase (the start is already spread over the strips), the rest as
+// in `cold`. The start is converged already, so the main phase alone moves
+// the strips by the step between the keys.
+OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
+                                  int arbitrary_directions);
 
 // The budget `options` selects for the problem.
 int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,

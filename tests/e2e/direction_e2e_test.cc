@@ -209,8 +209,12 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   auto bad = get({30.0}, 3);
   EXPECT_EQ(bad.status().code(), Status::Code::kInvalidArgument);
 
-  // Precompute on the quarter grid: shard 0 of 60 is indices 0, 60, 120, 180
-  // (phi = 0, 15, 30, 45); 30 is stored already.
+  // Precompute on the quarter grid: shard 0 of 60 is the first 181 / 60 = 3
+  // keys of the lineage order: the root 7, then its children 6 and 6.75
+  // (quarter indices 28, 24, 27). Sets for 7 and 30 are stored already
+  // (7 by this request).
+  auto seven = get({7.0}, 4);
+  ASSERT_TRUE(seven.ok());
   cli::PrecomputeSpec spec;
   spec.n = {64};
   spec.space = 1;
@@ -219,9 +223,9 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   spec.shard_count = 60;
   auto pre = client->Precompute(spec, nullptr);
   ASSERT_TRUE(pre.ok()) << pre.status().message();
-  EXPECT_EQ(pre->total, 4u);
+  EXPECT_EQ(pre->total, 3u);
   EXPECT_EQ(pre->cached_already, 1u);
-  EXPECT_EQ(pre->done, 3u);
+  EXPECT_EQ(pre->done, 2u);
   // The whole-degree space keeps its 46 keys.
   spec.steps_per_degree = 1;
   spec.shard_count = 23;

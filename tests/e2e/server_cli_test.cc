@@ -103,7 +103,7 @@ TEST(ServerCli, EnvironmentVariablesConfigureAndFlagsWin) {
 
 TEST(ServerCli, TheCliVersionNamesTheProfileOfADefaultServer) {
   TempDir dir;
-  ServerProcess server(dir.path(), {});
+  ServerProcess server(dir.path(), DefaultWarmBudgetFlags());
   ASSERT_EQ(server.error(), "");
   ConnectOptions o;
   o.address = server.address();

@@ -12,6 +12,8 @@
 #include <fstream>
 #include <thread>
 
+#include "core/optimize/optimizer.h"
+
 namespace alignset::e2e {
 
 std::string ServerBinary() {
@@ -19,12 +21,20 @@ std::string ServerBinary() {
   return other != nullptr && *other != '\0' ? other : ALIGNSET_SERVER_PATH;
 }
 
+std::vector<std::string> DefaultWarmBudgetFlags() {
+  return {"--warm-budget", std::to_string(OptimizerOptions{}.warm_budget_fraction)};
+}
+
 ServerProcess::ServerProcess(const std::string& dir, const std::vector<std::string>& extra) {
   db_path_ = dir + "/cache.sqlite";
   const std::string port_file = dir + "/port";
   std::filesystem::remove(port_file);
   std::vector<std::string> args = {ServerBinary(), "--listen", "127.0.0.1:0", "--port-file",
-                                   port_file, "--db", db_path_, "--log-level", "warn"};
+                                   port_file, "--db", db_path_, "--log-level", "warn",
+                                   // Every key from Owen-Sobol unless a test asks for the key
+                                   // lineage (a later --warm-budget in `extra` wins): most
+                                   // suites count one optimization per requested key.
+                                   "--warm-budget", "0"};
   args.insert(args.end(), extra.begin(), extra.end());
   const std::string log = dir + "/server.log";
   log_path_ = log;

@@ -18,9 +18,15 @@ std::string ServerBinary();
 // alignset-server as a child process: started on 127.0.0.1 with port 0 and a
 // --port-file, so tests never race for a port. The destructor stops it with
 // SIGTERM (or reaps it if a test killed it).
+// The flags that give a server the default warm budget back (the harness
+// starts servers with --warm-budget 0; see ServerProcess).
+std::vector<std::string> DefaultWarmBudgetFlags();
+
 class ServerProcess {
  public:
   // `dir` holds the database and the port file; `extra` are more flags.
+  // The server starts with --warm-budget 0 (every key optimized from
+  // Owen-Sobol, one optimization per key) unless `extra` sets it.
   ServerProcess(const std::string& dir, const std::vector<std::string>& extra);
   ~ServerProcess();
   ServerProcess(const ServerProcess&) = delete;

@@ -1,0 +1,247 @@
+// The key lineage: a key that is not a root continues from its parent's set
+// (core/align/key_lineage.h), and still its set is a function of its key.
+// Real servers on loopback, each on its own SQLite file: the same key filled
+// cold (its whole lineage computed in one job), after its neighbours, in a
+// batch precompute in another order, in one shard of the two-direction
+// space, lazily from a file a previous server left, and in another
+// request order gives the same bytes. With --warm-budget 0 every key is
+// optimized from Owen-Sobol again, under a profile of its own.
+#include <gtest/gtest.h>
+
+#include <alignset/client.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <tuple>
+#include <string>
+#include <vector>
+
+#include "core/align/canonical.h"
+#include "core/align/key_lineage.h"
+#include "tests/e2e/server_process.h"
+
+namespace alignset::e2e {
+namespace {
+
+const std::vector<std::string> kCold = {"--max-iterations", "60", "--workers", "1",
+                                        "--threads-per-worker", "1", "--max-n", "4096"};
+// The server's default warm budget, named because the harness turns it off.
+const std::vector<std::string> kFlags = [] {
+  std::vector<std::string> f = kCold;
+  const std::vector<std::string> warm = DefaultWarmBudgetFlags();
+  f.insert(f.end(), warm.begin(), warm.end());
+  return f;
+}();
+constexpr uint32_t kN = 64;
+
+AlignedSet MustGet(ServiceClient& client, std::vector<double> dirs) {
+  alignset::SetRequest r;
+  r.n = kN;
+  r.directions_deg = std::move(dirs);
+  auto s = client.GetAlignedSet(r);
+  EXPECT_TRUE(s.ok()) << s.status().message();
+  return s.ok() ? std::move(s).value() : AlignedSet{};
+}
+
+// A fresh folder under the test's one: one server, one cache file.
+std::string Folder(const TempDir& dir, const std::string& name) {
+  const std::string path = dir.path() + "/" + name;
+  std::filesystem::create_directories(path);
+  return path;
+}
+
+bool SameBytes(const PointSet& a, const PointSet& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i].x != b[i].x || a[i].y != b[i].y) return false;
+  }
+  return true;
+}
+
+void Precompute(ServiceClient& client, const PrecomputeSpec& spec) {
+  auto done = client.Precompute(spec, nullptr);
+  ASSERT_TRUE(done.ok()) << done.status().message();
+  EXPECT_EQ(done->failed, 0u);
+}
+
+// The shard of `shards` whose block of the lineage order (roots' subtrees
+// one after another, each by depth; the server's precompute order) holds
+// the key at canonical `index` of the count-direction space.
+uint32_t ShardOf(size_t index, int count, uint32_t shards) {
+  const size_t size = CanonicalKeyCount(count);
+  std::vector<std::tuple<size_t, int, size_t>> order;
+  for (size_t i = 0; i < size; ++i) {
+    const CanonicalDirections key = CanonicalKeyAt(count, i);
+    order.emplace_back(*CanonicalKeyIndex(LineageRoot(key)), LineageDepth(key), i);
+  }
+  std::sort(order.begin(), order.end());
+  for (size_t p = 0; p < size; ++p) {
+    if (std::get<2>(order[p]) != index) continue;
+    for (uint32_t k = 0; k < shards; ++k) {
+      if (p < size * (k + 1) / shards) return k;
+    }
+  }
+  return 0;
+}
+
+// The canonical key (33, 57): depth 6, its lineage runs from the root
+// (30, 60) through (30, 59) ... (32, 57).
+const std::vector<double> kKey = {33, 57};
+
+TEST(Lineage, TheTestKeyIsDeepEnoughToMatter) {
+  const auto c = Canonicalize(kKey);
+  ASSERT_TRUE(c.ok());
+  EXPECT_GE(LineageDepth(c->key), 4);
+}
+
+TEST(Lineage, AKeysSetIsTheSameWhateverWasFilledBefore) {
+  TempDir dir;
+  // 1: cold, the whole lineage in one job.
+  PointSet cold;
+  {
+    ServerProcess server(Folder(dir, "cold"), kFlags);
+    ASSERT_TRUE(server.error().empty()) << server.error();
+    auto client = ConnectTo(server);
+    ASSERT_NE(client, nullptr);
+    const AlignedSet set = MustGet(*client, kKey);
+    EXPECT_FALSE(set.info.from_cache);
+    cold = set.points;
+    ASSERT_EQ(cold.size(), kN);
+    auto stats = client->GetMetrics();
+    ASSERT_TRUE(stats.ok());
+    // The key and the ancestors it needed were optimized, once each.
+    EXPECT_EQ(stats->optimizations_completed, static_cast<uint64_t>(LineageDepth(Canonicalize(kKey)->key)) + 1);
+  }
+  // 2: after its parent, through another orientation of the same key.
+  {
+    ServerProcess server(Folder(dir, "neighbours"), kFlags);
+    ASSERT_TRUE(server.error().empty()) << server.error();
+    auto client = ConnectTo(server);
+    ASSERT_NE(client, nullptr);
+    MustGet(*client, {32, 57});
+    MustGet(*client, {31, 57});
+    const AlignedSet set = MustGet(*client, {57, 33});
+    // The same orbit representative, reached with no swap or mirror.
+    EXPECT_FALSE(set.info.swapped || set.info.inverted || set.info.inverted_y);
+    EXPECT_TRUE(SameBytes(set.points, cold)) << "after its neighbours";
+  }
+  // 3: a batch precompute in another order (a descendant first).
+  {
+    ServerProcess server(Folder(dir, "batch"), kFlags);
+    ASSERT_TRUE(server.error().empty()) << server.error();
+    auto client = ConnectTo(server);
+    ASSERT_NE(client, nullptr);
+    PrecomputeSpec spec;
+    spec.n = {kN};
+    spec.space = 0;
+    spec.keys = {{34, 57}, {10, 20}, {33, 57}, {30, 60}};
+    Precompute(*client, spec);
+    const AlignedSet set = MustGet(*client, kKey);
+    EXPECT_TRUE(set.info.from_cache);
+    EXPECT_TRUE(SameBytes(set.points, cold)) << "in a batch, after a descendant";
+  }
+  // 4: the shard of the two-direction space that holds the key, then the
+  // file the shard's server left, read by a new server.
+  const auto index = CanonicalKeyIndex(Canonicalize(kKey)->key);
+  ASSERT_TRUE(index.ok());
+  const uint32_t shards = 97;
+  {
+    ServerProcess server(Folder(dir, "shard"), kFlags);
+    ASSERT_TRUE(server.error().empty()) << server.error();
+    auto client = ConnectTo(server);
+    ASSERT_NE(client, nullptr);
+    PrecomputeSpec spec;
+    spec.n = {kN};
+    spec.space = 2;
+    spec.shard_index = ShardOf(*index, 2, shards);
+    spec.shard_count = shards;
+    Precompute(*client, spec);
+    const AlignedSet set = MustGet(*client, kKey);
+    EXPECT_TRUE(set.info.from_cache);
+    EXPECT_TRUE(SameBytes(set.points, cold)) << "in shard " << spec.shard_index << "/" << shards;
+  }
+  {
+    ServerProcess server(Folder(dir, "shard"), kFlags);
+    ASSERT_TRUE(server.error().empty()) << server.error();
+    auto client = ConnectTo(server);
+    ASSERT_NE(client, nullptr);
+    const AlignedSet set = MustGet(*client, kKey);
+    EXPECT_TRUE(set.info.from_cache);
+    EXPECT_TRUE(SameBytes(set.points, cold)) << "read back by a new server";
+    // A key two steps further down, outside the shard: its lineage starts
+    // from what the shard stored.
+    const AlignedSet far = MustGet(*client, {33, 47});
+    EXPECT_FALSE(far.info.from_cache);
+  }
+}
+
+// Shards hold contiguous blocks of the lineage order, parents before
+// children: run one after another on one server, every shard finds its
+// keys' parents stored (by itself or an earlier shard), so no item is
+// found cached and every key is optimized exactly once.
+TEST(Lineage, ShardsPartitionTheLineageOrderAndFindTheirParents) {
+  TempDir dir;
+  ServerProcess server(Folder(dir, "shards"), kFlags);
+  ASSERT_TRUE(server.error().empty()) << server.error();
+  auto client = ConnectTo(server);
+  ASSERT_NE(client, nullptr);
+  uint64_t total = 0, done = 0, cached = 0;
+  for (uint32_t k = 0; k < 7; ++k) {
+    PrecomputeSpec spec;
+    spec.n = {kN};
+    spec.space = 1;
+    spec.shard_index = k;
+    spec.shard_count = 7;
+    auto r = client->Precompute(spec, nullptr);
+    ASSERT_TRUE(r.ok()) << r.status().message();
+    total += r->total;
+    done += r->done;
+    cached += r->cached_already;
+  }
+  EXPECT_EQ(total, 46u);
+  EXPECT_EQ(done, 46u);
+  EXPECT_EQ(cached, 0u);
+  auto stats = client->GetMetrics();
+  ASSERT_TRUE(stats.ok());
+  EXPECT_EQ(stats->optimizations_completed, 46u);
+}
+
+TEST(Lineage, WarmBudgetZeroOptimizesEveryKeyColdUnderItsOwnProfile) {
+  TempDir dir;
+  std::vector<std::string> flags = kCold;
+  flags.insert(flags.end(), {"--warm-budget", "0"});
+  ServerProcess cold_server(Folder(dir, "cold"), flags);
+  ASSERT_TRUE(cold_server.error().empty()) << cold_server.error();
+  ServerProcess warm_server(Folder(dir, "warm"), kFlags);
+  ASSERT_TRUE(warm_server.error().empty()) << warm_server.error();
+  auto cold = ConnectTo(cold_server);
+  auto warm = ConnectTo(warm_server);
+  ASSERT_NE(cold, nullptr);
+  ASSERT_NE(warm, nullptr);
+  const AlignedSet a = MustGet(*cold, kKey);
+  const AlignedSet b = MustGet(*warm, kKey);
+  EXPECT_NE(a.info.profile, b.info.profile);
+  EXPECT_FALSE(SameBytes(a.points, b.points));
+  EXPECT_EQ(a.info.iterations, 60);  // the cold budget (--max-iterations)
+  EXPECT_EQ(b.info.iterations, 8);  // the warm one: 0.13 of it
+  auto stats = cold->GetMetrics();
+  ASSERT_TRUE(stats.ok());
+  EXPECT_EQ(stats->optimizations_completed, 1u);
+  // A root is optimized cold by both: the same set under two profiles.
+  const AlignedSet ra = MustGet(*cold, {30, 60});
+  const AlignedSet rb = MustGet(*warm, {30, 60});
+  EXPECT_TRUE(SameBytes(ra.points, rb.points));
+}
+
+TEST(Lineage, TheServerRefusesABadWarmBudget) {
+  TempDir dir;
+  for (const char* bad : {"-0.1", "1.5", "nan", "x"}) {
+    std::vector<std::string> flags = kFlags;
+    flags.insert(flags.end(), {"--warm-budget", bad});
+    ServerProcess server(Folder(dir, "bad"), flags);
+    EXPECT_FALSE(server.error().empty()) << bad;
+  }
+}
+
+}  // namespace
+}  // namespace alignset::e2e
