@@ -8,11 +8,18 @@
 #
 # Rows: the 46-key one-direction space at N = 1024 and 4096 (whole); the
 # 4141-key two-direction space at 1024 and 4096 sampled as shard 0 of
-# SHARDS (every SHARDS-th key of the canonical order: 208 keys for 20, spread
-# over the whole space) and extrapolated to 4141; one key at N = 16384 and
+# SHARDS (every SHARDS-th key of the canonical order for lattices: 208 keys
+# for 20, spread over the whole space; a contiguous block of the lineage
+# order for optimized keys) and extrapolated to 4141; one key at N = 16384 and
 # 65536 (one direction, 30 deg; two directions, 30 and 75 deg). The server
-# runs its defaults (one worker with every core). Wall-clock seconds of each
-# precompute call; the machine is shared, so compare rows of one run only.
+# runs its defaults (one worker with every core) but for SERVER_FLAGS, by
+# default --warm-budget 0: every key optimized from Owen-Sobol, the cost
+# before the key lineage (algorithm version 5's path; its sets differ from
+# version 6's only in the lineage). The lineage's fill times are
+# bench/lineage_fill.sh's, whose samples follow the lineage (a sample of
+# scattered keys or a lone deep key would count its ancestors too).
+# Wall-clock seconds of each precompute call; the machine is shared, so
+# compare rows of one run only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${BUILD_DIR:-build}"
@@ -24,7 +31,7 @@ WORK=$(mktemp -d)
 . scripts/lib/loopback_server.sh
 trap 'stop_loopback_server; rm -rf "$WORK"' EXIT
 start_loopback_server 30 "$WORK/server.log" "$BUILD_DIR/server/alignset-server" \
-  --db "$WORK/fill.sqlite" --log-level warn
+  --db "$WORK/fill.sqlite" --log-level warn ${SERVER_FLAGS---warm-budget 0}
 CLI="$BUILD_DIR/client/alignset"
 
 rows=()

@@ -6,20 +6,25 @@
 #   - two-direction keys at N = 4096: the box phi1 in 26..34, phi2 in 56..64
 #     around the root (30, 60) (45 distinct canonical keys, all in that
 #     root's subtree, so the fill is the root once and every other key warm);
-#   - N = 65536: a root and one child, one and two directions.
+#   - the same at N = 1024, and N = 16384 and 65536: a root and one child,
+#     one and two directions.
 # The whole two-direction space is extrapolated from the server log's
 # per-set seconds: 50 roots x the median cold set + 4091 x the mean warm set
 # (a whole-space precompute optimizes each key exactly once, roots first).
-#   bench/lineage_fill.sh [BUILD_DIR] [OUT_DIR]     (SUMMARY_ONLY=1: re-read the logs in $LOGS)
+#   bench/lineage_fill.sh [BUILD_DIR] [OUT_DIR]
+# SUMMARY_ONLY=1: re-read the logs in $LOGS; ROWS="one4096 two1024 ...": run
+# only these rows and keep the other rows' logs.
 set -euo pipefail
 build=${1:-build}
 out=${2:-bench/results}
 logs=${LOGS:-$build/lineage-fill}
+rows=${ROWS:-one1024 two1024 one4096 two4096 one16384 two16384 one65536 two65536}
 if [[ -z ${SUMMARY_ONLY:-} ]]; then
-  rm -rf "$logs"
+  [[ -z ${ROWS:-} ]] && rm -rf "$logs"
   mkdir -p "$logs"
   server_pid=
   start() {
+    rm -f "$logs/$2.db"*
     "$build/server/alignset-server" --listen "127.0.0.1:$1" --db "$logs/$2.db" --log-level info \
       > "$logs/$2.log" 2>&1 &
     server_pid=$!
@@ -32,22 +37,26 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
     local t0
     t0=$(date +%s.%N)
     "$build/client/alignset" precompute --server "127.0.0.1:$port" "$@" > "$logs/$name.out" 2>&1
-    echo "$name $(echo "$(date +%s.%N) - $t0" | bc)" >> "$logs/wall.txt"
+    touch "$logs/wall.txt"
+    grep -v "^$name " "$logs/wall.txt" > "$logs/wall.tmp" || true
+    echo "$name $(echo "$(date +%s.%N) - $t0" | bc)" >> "$logs/wall.tmp"
+    mv "$logs/wall.tmp" "$logs/wall.txt"
   }
-  start 50981 one4096
-  timed one4096 50981 -n 4096 --space 1dir
-  stop
-  keys=()
-  for a in $(seq 26 34); do for b in $(seq 56 64); do keys+=(--key "$a,$b"); done; done
-  start 50982 two4096
-  timed two4096 50982 -n 4096 --space keys "${keys[@]}"
-  stop
-  start 50983 one65536
-  timed one65536 50983 -n 65536 --space keys --key 7 --key 8
-  stop
-  start 50984 two65536
-  timed two65536 50984 -n 65536 --space keys --key 30,60 --key 31,60
-  stop
+  box=()
+  for a in $(seq 26 34); do for b in $(seq 56 64); do box+=(--key "$a,$b"); done; done
+  port=50980
+  for row in $rows; do
+    port=$((port + 1))
+    n=${row#one}; n=${n#two}
+    start "$port" "$row"
+    case $row in
+      one1024|one4096) timed "$row" "$port" -n "$n" --space 1dir ;;
+      two1024|two4096) timed "$row" "$port" -n "$n" --space keys "${box[@]}" ;;
+      one*) timed "$row" "$port" -n "$n" --space keys --key 7 --key 8 ;;
+      two*) timed "$row" "$port" -n "$n" --space keys --key 30,60 --key 31,60 ;;
+    esac
+    stop
+  done
 fi
 mkdir -p "$out"
 /usr/bin/python3 - "$logs" > "$out/lineage_fill.md" <<'EOF'
@@ -72,10 +81,14 @@ print('2 cores; server defaults (one worker, every core, warm budget 0.13); a fr
 print('| what | wall s | cold sets | median cold s | warm sets | mean warm s | median warm s |')
 print('|---|---:|---:|---:|---:|---:|---:|')
 rows = {}
-for name, what in [('one4096', '1 dir, N = 4096, the 46 keys'),
-                   ('two4096', '2 dir, N = 4096, 45 keys around the root (30, 60)'),
-                   ('one65536', '1 dir, N = 65536, the root 7 and its child 8'),
-                   ('two65536', '2 dir, N = 65536, the root (30, 60) and its child (31, 60)')]:
+names = []
+for n in (1024, 4096):
+    names += [('one%d' % n, '1 dir, N = %d, the 46 keys' % n),
+              ('two%d' % n, '2 dir, N = %d, 45 keys around the root (30, 60)' % n)]
+for n in (16384, 65536):
+    names += [('one%d' % n, '1 dir, N = %d, the root 7 and its child 8' % n),
+              ('two%d' % n, '2 dir, N = %d, the root (30, 60) and its child (31, 60)' % n)]
+for name, what in names:
     if name not in wall:
         continue
     cold, warm = sets(name)
@@ -84,16 +97,18 @@ for name, what in [('one4096', '1 dir, N = 4096, the 46 keys'),
     mean = lambda v: '%.3f' % statistics.mean(v) if v else '-'
     print('| %s | %.1f | %d | %s | %d | %s | %s |' % (what, float(wall[name]), len(cold), med(cold), len(warm), mean(warm), med(warm)))
 print()
-if 'two4096' in rows:
-    cold, warm = rows['two4096']
+for name in ('two1024', 'two4096'):
+    if name not in rows:
+        continue
+    cold, warm = rows[name]
     total = 50 * statistics.median(cold) + 4091 * statistics.mean(warm)
-    print('Whole two-direction space at N = 4096: 50 roots x %.2f s + 4091 x %.3f s = **%.0f s (%.1f min)**.' %
-          (statistics.median(cold), statistics.mean(warm), total, total / 60))
-for name, keys, roots in [('one65536', 46, 3), ('two65536', 4141, 50)]:
+    print('Whole two-direction space at N = %s: 50 roots x %.2f s + 4091 x %.3f s = **%.0f s (%.1f min)**.\n' %
+          (name[3:], statistics.median(cold), statistics.mean(warm), total, total / 60))
+for name, keys, roots in [('one16384', 46, 3), ('two16384', 4141, 50), ('one65536', 46, 3), ('two65536', 4141, 50)]:
     if name in rows and rows[name][0] and rows[name][1]:
         cold, warm = rows[name]
         avg = (roots * statistics.median(cold) + (keys - roots) * statistics.mean(warm)) / keys
-        print('\nN = 65536, %d keys: %d roots x %.1f s + %d x %.1f s = %.1f s a set on average over the space.' %
-              (keys, roots, statistics.median(cold), keys - roots, statistics.mean(warm), avg))
+        print('N = %s, %d keys: %d roots x %.1f s + %d x %.1f s = %.1f s a set on average over the space.\n' %
+              (name[3:], keys, roots, statistics.median(cold), keys - roots, statistics.mean(warm), avg))
 EOF
 cat "$out/lineage_fill.md"

@@ -69,6 +69,8 @@ const std::vector<Flag>& Flags() {
          c.warm_budget = *f;
          return Status::Ok();
        }},
+      {"warm-min-n", "N   the smallest N whose keys use the key lineage (default 4096)",
+       IntFlag(&ServerConfig::warm_min_n, "warm-min-n", kMinPoints, kMaxPoints)},
       {"engine", "E        spectral engine auto|direct|fast|cuda (default auto)",
        [](ServerConfig& c, const std::string& v) {
          auto k = ParseEngineKind(v);

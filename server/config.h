@@ -24,6 +24,7 @@ struct ServerConfig {
   uint32_t max_n = 65536;
   int max_iterations = 0;  // 0: DefaultIterationBudget(N)
   double warm_budget = OptimizerOptions{}.warm_budget_fraction;  // WarmStartOptions
+  int64_t warm_min_n = OptimizerOptions{}.warm_min_points;       // UsesKeyLineage
   EngineKind engine = EngineKind::kAuto;
   uint64_t seed = 1;
   // Optimizations waiting for a worker; a request needing one more gets

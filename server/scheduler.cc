@@ -615,7 +615,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
 void Scheduler::PlanLineage(Job* job) {
   std::vector<storage::SetKey> chain = {job->key};
   std::optional<PointSet> start;
-  if (options_.optimizer.warm_budget_fraction > 0.0) {
+  if (UsesKeyLineage(options_.optimizer, job->key.n)) {
     for (;;) {
       const auto parent = WarmParent(chain.back().dirs);
       if (!parent) break;  // a root: optimized from Owen-Sobol

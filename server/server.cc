@@ -141,6 +141,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   so.max_paused = config.max_paused;
   so.optimizer.max_iterations = config.max_iterations;
   so.optimizer.warm_budget_fraction = config.warm_budget;
+  so.optimizer.warm_min_points = static_cast<uint32_t>(config.warm_min_n);
   so.seed = config.seed;
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
   impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);

@@ -89,6 +89,10 @@ Status CheckDistinctDirections(const std::vector<double>& arbitrary) {
   return Status::Ok();
 }
 
+bool UsesKeyLineage(const OptimizerOptions& options, uint32_t n) {
+  return options.warm_budget_fraction > 0.0 && n >= options.warm_min_points;
+}
+
 OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
                                   int arbitrary_directions) {
   OptimizerOptions warm = cold;

@@ -131,7 +131,18 @@ struct OptimizerOptions {
   // a few percent and the CP-shifted random Gaussians 1.25x worse (N = 4096,
   // 4 seeds; docs/results.md, "Filling the space").
   double warm_budget_fraction = 0.13;
+  // The smallest N whose keys use the lineage. Below it every key is
+  // optimized from Owen-Sobol: a cold two-direction set at N = 1024 takes
+  // 0.8 s (the 4141 keys in under an hour without the lineage), and there
+  // the warm sets were further from the cold ones (N = 1024: the aligned
+  // edge 1.06x, the centred Gaussian 3x, still 300x below Owen-Sobol's;
+  // N = 256: the aligned edge 1.15x; docs/results.md).
+  uint32_t warm_min_points = 4096;
 };
+
+// True when the service starts keys of N points from their lineage parent
+// (warm_budget_fraction > 0 and N >= warm_min_points).
+bool UsesKeyLineage(const OptimizerOptions& options, uint32_t n);
 
 // alignset's profile before the low-frequency levers (algorithm version 2):
 // the supplement's flat spectrum loss, no warm-up, no axis clamp, no

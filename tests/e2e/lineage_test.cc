@@ -4,8 +4,8 @@
 // cold (its whole lineage computed in one job), after its neighbours, in a
 // batch precompute in another order, in one shard of the two-direction
 // space, lazily from a file a previous server left, and in another
-// request order gives the same bytes. With --warm-budget 0 every key is
-// optimized from Owen-Sobol again, under a profile of its own.
+// request order gives the same bytes. With --warm-budget 0 (a profile of
+// its own), and below --warm-min-n, every key is optimized from Owen-Sobol.
 #include <gtest/gtest.h>
 
 #include <alignset/client.h>
@@ -25,11 +25,13 @@ namespace {
 
 const std::vector<std::string> kCold = {"--max-iterations", "60", "--workers", "1",
                                         "--threads-per-worker", "1", "--max-n", "4096"};
-// The server's default warm budget, named because the harness turns it off.
+// The server's default warm budget (the harness turns it off), and the
+// lineage down to the smallest N so that these tests run in seconds.
 const std::vector<std::string> kFlags = [] {
   std::vector<std::string> f = kCold;
   const std::vector<std::string> warm = DefaultWarmBudgetFlags();
   f.insert(f.end(), warm.begin(), warm.end());
+  f.insert(f.end(), {"--warm-min-n", "16"});
   return f;
 }();
 constexpr uint32_t kN = 64;
@@ -233,11 +235,33 @@ TEST(Lineage, WarmBudgetZeroOptimizesEveryKeyColdUnderItsOwnProfile) {
   EXPECT_TRUE(SameBytes(ra.points, rb.points));
 }
 
-TEST(Lineage, TheServerRefusesABadWarmBudget) {
+TEST(Lineage, BelowWarmMinNEveryKeyIsCold) {
+  TempDir dir;
+  std::vector<std::string> flags = kCold;
+  const std::vector<std::string> warm = DefaultWarmBudgetFlags();
+  flags.insert(flags.end(), warm.begin(), warm.end());  // --warm-min-n at its default, 4096
+  ServerProcess server(Folder(dir, "small"), flags);
+  ASSERT_TRUE(server.error().empty()) << server.error();
+  auto client = ConnectTo(server);
+  ASSERT_NE(client, nullptr);
+  const AlignedSet set = MustGet(*client, kKey);
+  EXPECT_EQ(set.info.iterations, 60);
+  auto stats = client->GetMetrics();
+  ASSERT_TRUE(stats.ok());
+  EXPECT_EQ(stats->optimizations_completed, 1u);
+}
+
+TEST(Lineage, TheServerRefusesABadWarmBudgetOrMinN) {
   TempDir dir;
   for (const char* bad : {"-0.1", "1.5", "nan", "x"}) {
     std::vector<std::string> flags = kFlags;
     flags.insert(flags.end(), {"--warm-budget", bad});
+    ServerProcess server(Folder(dir, "bad"), flags);
+    EXPECT_FALSE(server.error().empty()) << bad;
+  }
+  for (const char* bad : {"8", "-1", "x"}) {
+    std::vector<std::string> flags = kFlags;
+    flags.insert(flags.end(), {"--warm-min-n", bad});
     ServerProcess server(Folder(dir, "bad"), flags);
     EXPECT_FALSE(server.error().empty()) << bad;
   }
