@@ -8,7 +8,7 @@
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
 //       [--construction optimized|lattice|lattice-start|warm --warm-root DEG
-//        [--warm-iterations I --warm-lr-scale X --warm-warmup F --warm-anneal R]]
+//        [--warm-iterations I --warm-lr-scale X --warm-warmup F --warm-anneal R --warm-zero R]]
 //       [--first-seed S]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
 //        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
@@ -80,6 +80,7 @@ struct Options {
   double warm_lr_scale = 1.0;
   double warm_warmup = 0.0;
   double warm_anneal = 1.0;
+  double warm_zero = -1.0;  // < 0: the profile's zero radius
   int threads = 2;
   OptimizerOptions opt;
   std::string cache = "build/bench-cache";
@@ -141,6 +142,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->warm_root = std::stod(next());
     } else if (a == "--warm-iterations") {
       o->warm_iterations = std::stoi(next());
+    } else if (a == "--warm-zero") {
+      o->warm_zero = std::stod(next());
     } else if (a == "--warm-anneal") {
       o->warm_anneal = std::stod(next());
     } else if (a == "--warm-warmup") {
@@ -187,7 +190,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
           "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|warm]\n"
           "  [--warm-root DEG] [--warm-iterations I] [--warm-lr-scale X] [--warm-warmup F]\n"
-          "  [--warm-anneal R] [--first-seed S]\n"
+          "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
           "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
@@ -371,6 +374,7 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
   if (o.construction == "warm") {
     s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << o.warm_lr_scale << ","
       << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction;
+    if (o.warm_zero >= 0) s << ",z" << o.warm_zero;
   }
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
@@ -443,6 +447,7 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
     if (o.warm_iterations > 0) opt.max_iterations = o.warm_iterations;
     opt.warmup_fraction = o.warm_warmup;
     opt.anneal_ratio = o.warm_anneal;
+    if (o.warm_zero >= 0) opt.zero_radius = o.warm_zero;
     if (o.warm_lr_scale != 1.0) {
       opt.learning_rate =
           o.warm_lr_scale * DefaultLearningRate(BuildFrequencySet(

@@ -80,7 +80,8 @@ int RunPrecompute(const PrecomputeOptions& o) {
                   static_cast<unsigned long long>(u.cached_already),
                   static_cast<unsigned long long>(u.failed),
                   FormatDuration(u.estimated_seconds_left).c_str());
-    progress.Update(static_cast<double>(u.total - u.remaining), static_cast<double>(u.total), detail);
+    progress.Update(static_cast<double>(u.total - u.remaining) + u.running_fraction,
+                    static_cast<double>(u.total), detail);
   });
   if (!last.ok()) return Failure(last.status());
   progress.Finish("");

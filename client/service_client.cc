@@ -139,6 +139,7 @@ PrecomputeUpdate ToUpdate(const v1::PrecomputeProgress& p) {
   u.cached_already = p.cached_already();
   u.failed = p.failed();
   u.remaining = p.remaining();
+  u.running_fraction = p.running_fraction();
   u.elapsed_seconds = p.elapsed_seconds();
   u.estimated_seconds_left = p.estimated_seconds_left();
   u.last_key = p.last_key().text();

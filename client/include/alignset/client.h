@@ -159,6 +159,9 @@ struct PrecomputeSpec {
 
 struct PrecomputeUpdate {
   uint64_t total = 0, done = 0, cached_already = 0, failed = 0, remaining = 0;
+  // The items being optimized now, each by the fraction of its iterations
+  // done: total - remaining + running_fraction moves within a long item.
+  double running_fraction = 0.0;
   double elapsed_seconds = 0.0;
   double estimated_seconds_left = -1.0;
   std::string last_key;
