@@ -126,10 +126,10 @@ struct OptimizerOptions {
   // of the cold budget. The service starts every key that is not a root of
   // the key lineage (core/align/key_lineage.h) from its parent's set; 0
   // optimizes every key from Owen-Sobol. At 0.13 (195 iterations for two
-  // directions at N = 4096, chains up to 10 deep) the aligned and axis edges,
-  // the disk, the triangle and the smooth members are the cold sets' within
-  // a few percent and the CP-shifted random Gaussians 1.25x worse (N = 4096,
-  // 4 seeds; docs/results.md, "Filling the space").
+  // directions at N = 4096; chains of 10 measured) the aligned and axis
+  // edges, the smoothed step and the disk are the cold sets' within 1-8%,
+  // the triangle 8-11% and the Gaussian members 14-42% worse (N = 4096,
+  // 4 seeds; more at 65536; docs/results.md, "Filling the space").
   double warm_budget_fraction = 0.13;
   // The smallest N whose keys use the lineage. Below it every key is
   // optimized from Owen-Sobol: a cold two-direction set at N = 1024 takes
