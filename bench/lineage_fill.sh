@@ -7,7 +7,9 @@
 #     around the root (30, 60) (45 distinct canonical keys, all in that
 #     root's subtree, so the fill is the root once and every other key warm);
 #   - the same at N = 1024, and N = 16384 and 65536: a root and one child,
-#     one and two directions.
+#     one and two directions;
+#   - with ROWS=full4096 (not in the default rows: about 45 min): the whole
+#     two-direction space at N = 4096, one `alignset precompute --space 2dir`.
 # The whole two-direction space is extrapolated from the server log's
 # per-set seconds: 50 roots x the median cold set + 4091 x the mean warm set
 # (a whole-space precompute optimizes each key exactly once, roots first).
@@ -47,11 +49,12 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   port=50980
   for row in $rows; do
     port=$((port + 1))
-    n=${row#one}; n=${n#two}
+    n=${row#one}; n=${n#two}; n=${n#full}
     start "$port" "$row"
     case $row in
       one1024|one4096) timed "$row" "$port" -n "$n" --space 1dir ;;
       two1024|two4096) timed "$row" "$port" -n "$n" --space keys "${box[@]}" ;;
+      full4096) timed "$row" "$port" -n 4096 --space 2dir ;;
       one*) timed "$row" "$port" -n "$n" --space keys --key 7 --key 8 ;;
       two*) timed "$row" "$port" -n "$n" --space keys --key 30,60 --key 31,60 ;;
     esac
@@ -88,6 +91,7 @@ for n in (1024, 4096):
 for n in (16384, 65536):
     names += [('one%d' % n, '1 dir, N = %d, the root 7 and its child 8' % n),
               ('two%d' % n, '2 dir, N = %d, the root (30, 60) and its child (31, 60)' % n)]
+names += [('full4096', '2 dir, N = 4096, **the whole space, 4141 keys**')]
 for name, what in names:
     if name not in wall:
         continue
@@ -97,6 +101,11 @@ for name, what in names:
     mean = lambda v: '%.3f' % statistics.mean(v) if v else '-'
     print('| %s | %.1f | %d | %s | %d | %s | %s |' % (what, float(wall[name]), len(cold), med(cold), len(warm), mean(warm), med(warm)))
 print()
+if 'full4096' in rows:
+    cold, warm = rows['full4096']
+    print('Whole two-direction space at N = 4096, measured: %d sets (%d roots, %d warm) in **%.0f s (%.1f min)** '
+          'wall clock, %.3f s a set.\n' % (len(cold) + len(warm), len(cold), len(warm), float(wall['full4096']),
+                                          float(wall['full4096']) / 60, float(wall['full4096']) / 4141))
 for name in ('two1024', 'two4096'):
     if name not in rows:
         continue
