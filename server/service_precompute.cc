@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <deque>
-#include <functional>
 #include <memory>
 #include <numeric>
 #include <thread>
@@ -148,8 +147,23 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   p.set_total(total);
   Clock::time_point last_sent{};
   bool client_gone = false;
-  // Set once the outstanding items exist (below); empty until then.
-  std::function<double()> running_fraction;
+  struct Outstanding {
+    storage::SetKey key;
+    std::unique_ptr<Ticket> ticket;
+  };
+  std::deque<Outstanding> outstanding;
+  // How far the items still running are, each by its share of iterations.
+  auto running_fraction = [&] {
+    double f = 0.0;
+    for (const Outstanding& o : outstanding) {
+      const JobView v = o.ticket->View();
+      if (v.state == JobView::State::kDone) continue;
+      if (v.progress.max_iterations > 0) {
+        f += std::min(1.0, static_cast<double>(v.progress.iteration) / v.progress.max_iterations);
+      }
+    }
+    return f;
+  };
   // Sends the counts; cache skips are throttled, everything else goes out.
   auto send = [&](const storage::SetKey* key, const std::string& error, bool force) {
     const uint64_t resolved = p.done() + p.cached_already() + p.failed();
@@ -159,9 +173,9 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         p.done() > 0 ? p.elapsed_seconds() / static_cast<double>(p.done()) * p.remaining()
                      : (p.remaining() == 0 ? 0.0 : -1.0));
     if (key) FillKey(*key, p.mutable_last_key(), *grid);
-    p.set_running_fraction(running_fraction ? running_fraction() : 0.0);
     p.set_last_error(error);
     if (!force && Clock::now() - last_sent < std::chrono::milliseconds(100)) return;
+    p.set_running_fraction(running_fraction());
     last_sent = Clock::now();
     if (!writer->Write(p)) client_gone = true;
   };
@@ -174,22 +188,6 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   };
   send(nullptr, "", true);
 
-  struct Outstanding {
-    storage::SetKey key;
-    std::unique_ptr<Ticket> ticket;
-  };
-  std::deque<Outstanding> outstanding;
-  running_fraction = [&] {
-    double f = 0.0;
-    for (const Outstanding& o : outstanding) {
-      const JobView v = o.ticket->View();
-      if (v.state == JobView::State::kDone) continue;
-      if (v.progress.max_iterations > 0) {
-        f += std::min(1.0, static_cast<double>(v.progress.iteration) / v.progress.max_iterations);
-      }
-    }
-    return f;
-  };
   // Enough concurrent items to keep every worker busy; the batch never fills
   // the queue, so interactive requests always find room.
   const size_t window = static_cast<size_t>(config_.workers);

@@ -108,12 +108,7 @@ std::optional<LineageParent> WarmParent(const CanonicalDirections& key) {
 }
 
 int LineageDepth(const CanonicalDirections& key) {
-  if (IsQuarterKey(key)) {
-    const CanonicalDirections whole = key.phi1_quarter == 3
-                                          ? CanonicalDirections{1, key.phi1 + 1, key.phi1 + 1, 0}
-                                          : CanonicalDirections{1, key.phi1, key.phi1, 0};
-    return LineageDepth(whole) + (key.phi1_quarter == 2 ? 2 : 1);
-  }
+  if (IsQuarterKey(key)) return 1 + LineageDepth(WarmParent(key)->parent);
   const Node* node = WholeDegreeNode(key);
   return node == nullptr ? -1 : node->depth;
 }
