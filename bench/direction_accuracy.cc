@@ -17,10 +17,12 @@
 #include <vector>
 
 #include "core/analysis/direction_estimate.h"
+#include "core/analysis/edge_line_fit.h"
 #include "core/analysis/patch_sampling.h"
 #include "core/analysis/step_integrand.h"
 #include "core/spectral/direct_engine.h"
 #include "core/spectral/fast_engine.h"
+#include "core/sampling/owen_sobol.h"
 #include "core/util/angles.h"
 #include "core/util/hash.h"
 
@@ -86,12 +88,14 @@ std::vector<Case> Cases(int n, uint64_t seed) {
 // One estimate per case; `truth` gives the true direction(s) of a case (one
 // or two); with two truths and o.second, the first estimate is scored
 // against the first truth and the second against the second.
-template <typename Make>
-Stats Run(const std::vector<Case>& cases, const DirectionOptions& o, Make make,
-          const std::function<std::vector<double>(const Case&)>& truth, bool nearest = false) {
+using Estimator = std::function<StatusOr<DirectionEstimate>(const Case&)>;
+
+// One estimate per case by any estimator; `second`: score its second lobe.
+Stats RunEstimator(const std::vector<Case>& cases, const Estimator& estimate, bool second,
+                   const std::function<std::vector<double>(const Case&)>& truth, bool nearest = false) {
   Stats s;
   for (const Case& c : cases) {
-    auto r = EstimateDirection(make(c), o);
+    auto r = estimate(c);
     if (!r.ok()) {
       std::fprintf(stderr, "error: %s\n", r.status().message().c_str());
       std::exit(1);
@@ -107,7 +111,7 @@ Stats Run(const std::vector<Case>& cases, const DirectionOptions& o, Make make,
       const double e0 = AngleError(r->first.theta_deg, t[0]);
       const double e1 = AngleError(r->first.theta_deg, t[1]);
       s.errors.push_back(std::min(e0, e1));
-      if (o.second) {
+      if (second) {
         const double other = e0 <= e1 ? t[1] : t[0];
         if (r->second.status != DirectionStatus::kFound) {
           ++s.none2;
@@ -120,7 +124,7 @@ Stats Run(const std::vector<Case>& cases, const DirectionOptions& o, Make make,
     } else {
       s.errors.push_back(AngleError(r->first.theta_deg, t[0]));
     }
-    if (o.second && t.size() == 2) {
+    if (second && t.size() == 2) {
       if (r->first.status != DirectionStatus::kFound || r->second.status != DirectionStatus::kFound) {
         ++s.none2;
         s.errors2.push_back(90.0);
@@ -130,6 +134,13 @@ Stats Run(const std::vector<Case>& cases, const DirectionOptions& o, Make make,
     }
   }
   return s;
+}
+
+template <typename Make>
+Stats Run(const std::vector<Case>& cases, const DirectionOptions& o, Make make,
+          const std::function<std::vector<double>(const Case&)>& truth, bool nearest = false) {
+  return RunEstimator(
+      cases, [&](const Case& c) { return EstimateDirection(make(c), o); }, o.second, truth, nearest);
 }
 
 std::vector<double> Theta(const Case& c) { return {c.theta}; }
@@ -296,6 +307,112 @@ int main(int argc, char** argv) {
     });
   }
 
+  // --- The edge-line fit (core/analysis/edge_line_fit.h) on scattered
+  // samples: the same cases, random samples and the renderer's pre-pass
+  // (Owen-scrambled Sobol, one scramble per case).
+  std::printf("\nedge-line fit, scattered samples (core/analysis/edge_line_fit.h)\n");
+  Header();
+  auto owen = [](const Integrand2& f, int m, uint64_t seed) {
+    SampledPatch s;
+    s.points = OwenScrambledSobol(static_cast<uint32_t>(m), seed);
+    for (const Point2& q : s.points) s.values.push_back(f(q));
+    return s;
+  };
+  auto lines = [](auto make, bool second = false) -> Estimator {
+    return [make, second](const Case& c) {
+      EdgeLineOptions o;
+      o.second = second;
+      return EstimateEdgeLines(make(c), o);
+    };
+  };
+  for (int m : {64, 256, 1024, 4096}) {
+    for (bool sobol : {false, true}) {
+      if (sobol && m == 4096) continue;
+      auto make = [m, sobol, owen](const Case& c) {
+        return sobol ? owen(Step(c), m, c.seed) : RandomSamples(Step(c), m, c.seed);
+      };
+      const Stats s = RunEstimator(cases, lines(make), false, Theta);
+      Row("step, " + std::to_string(m) + (sobol ? " Owen-Sobol" : " random") + " samples", s.errors, s.none);
+    }
+  }
+  for (int m : {256, 1024}) {
+    auto other = [](const Case& c) { return ReduceDirection(c.theta + 30.0 + 90.0 * c.u); };
+    auto make = [m, other](const Case& c) {
+      const Vec2 n1 = UnitVector(c.theta), n2 = UnitVector(other(c));
+      const double cx = 0.35 + 0.3 * c.v, cy = 0.35 + 0.3 * c.w;
+      return RandomSamples(
+          [=](const Point2& p) {
+            const double a = (p.x - cx) * n1.x + (p.y - cy) * n1.y;
+            const double b = (p.x - cx) * n2.x + (p.y - cy) * n2.y;
+            return a >= 0.0 && b >= 0.0 ? 1.0 : 0.0;
+          },
+          m, c.seed);
+    };
+    const Stats s = RunEstimator(cases, lines(make, true), true,
+                                 [other](const Case& c) { return std::vector<double>{c.theta, other(c)}; },
+                                 /*nearest=*/true);
+    Row("polygon corner, " + std::to_string(m) + " random, theta1", s.errors, s.none);
+    Row("polygon corner, " + std::to_string(m) + " random, theta2", s.errors2, s.none2);
+  }
+  for (int m : {256, 1024}) {
+    auto make = [m](const Case& c) {
+      return RandomSamples(
+          [c](const Point2& p) {
+            const double t = std::clamp(Distance(c, p) / (8.0 / 64.0) + 0.5, 0.0, 1.0);
+            return t * t * (3.0 - 2.0 * t);
+          },
+          m, c.seed);
+    };
+    const Stats s = RunEstimator(cases, lines(make), false, Theta);
+    Row("smoothed step (ramp 1/8), " + std::to_string(m) + " random", s.errors, s.none);
+    auto bar = [m](const Case& c) {
+      return RandomSamples([c](const Point2& p) { return std::fabs(Distance(c, p)) <= 1.0 / 64 ? 1.0 : 0.0; },
+                           m, c.seed);
+    };
+    const Stats b = RunEstimator(cases, lines(bar), false, Theta);
+    Row("thin bar (1/32 wide), " + std::to_string(m) + " random", b.errors, b.none);
+    auto shaded = [m](const Case& c) {
+      // A step of contrast 1 on a linear gradient of range 1 across the pixel.
+      return RandomSamples([c](const Point2& p) { return (Distance(c, p) >= 0 ? 1.0 : 0.0) + p.x * c.u + p.y * (1 - c.u); },
+                           m, c.seed);
+    };
+    const Stats sh = RunEstimator(cases, lines(shaded), false, Theta);
+    Row("step on a gradient of equal range, " + std::to_string(m) + " random", sh.errors, sh.none);
+  }
+  std::printf("\n%-46s %8s\n", "edge-line fit: no edge (should be flagged)", "flagged");
+  auto flagged_lines = [&](const std::string& name, auto make) {
+    int none = 0, total = 0;
+    for (const Case& c : cases) {
+      auto r = EstimateEdgeLines(make(c));
+      ++total;
+      if (r.ok() && r->first.status != DirectionStatus::kFound) ++none;
+    }
+    std::printf("%-46s %4d/%-4d\n", name.c_str(), none, total);
+    std::fflush(stdout);
+  };
+  for (int m : {64, 256, 1024}) {
+    const std::string at = ", " + std::to_string(m) + " samples";
+    flagged_lines("white noise" + at, [m](const Case& c) {
+      auto rng = std::make_shared<Pcg32>(c.seed + 1);
+      return RandomSamples([rng](const Point2&) { return rng->NextDouble(); }, m, c.seed);
+    });
+    flagged_lines("disk (radius 0.1..0.35)" + at, [m](const Case& c) {
+      const double cx = 0.35 + 0.3 * c.u, cy = 0.35 + 0.3 * c.v, r = 0.1 + 0.25 * c.w;
+      return RandomSamples([=](const Point2& p) { return std::hypot(p.x - cx, p.y - cy) <= r ? 1.0 : 0.0; },
+                           m, c.seed);
+    });
+    flagged_lines("Gaussian blob (sigma 0.05..0.2)" + at, [m](const Case& c) {
+      const double cx = 0.35 + 0.3 * c.u, cy = 0.35 + 0.3 * c.v, s = 0.05 + 0.15 * c.w;
+      return RandomSamples(
+          [=](const Point2& p) { return std::exp(-(std::pow(p.x - cx, 2) + std::pow(p.y - cy, 2)) / (2 * s * s)); },
+          m, c.seed);
+    });
+    flagged_lines("linear gradient" + at, [m](const Case& c) {
+      return RandomSamples([c](const Point2& p) { return p.x * std::cos(c.theta) + p.y * std::sin(c.theta); }, m,
+                           c.seed);
+    });
+  }
+
   // --- Choices (README "Choices"): the same clean 64x64 steps.
   std::printf("\nchoices, clean step 64x64\n");
   Header();
@@ -370,6 +487,11 @@ int main(int argc, char** argv) {
       const SampledPatch s = RandomSamples(Step(c), m, 1);
       const double t = MedianSeconds([&] { (void)EstimateDirection(s, def); }, m >= (1 << 20) ? 3 : 11);
       std::printf("samples %8d  estimate %8.2f ms\n", m, 1e3 * t);
+    }
+    for (int m : {64, 256, 1024, 4096}) {
+      const SampledPatch s = RandomSamples(Step(c), m, 1);
+      const double t = MedianSeconds([&] { (void)EstimateEdgeLines(s); }, 21);
+      std::printf("samples %8d  edge-line fit %8.3f ms\n", m, 1e3 * t);
     }
   }
   return 0;

@@ -1,0 +1,211 @@
+#include "core/analysis/edge_line_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/util/directions.h"
+#include "core/util/hash.h"
+
+namespace alignset {
+namespace {
+
+struct Line {
+  double cx = 0.0, cy = 0.0;  // a point on it
+  double nx = 0.0, ny = 0.0;  // unit normal
+};
+
+double Distance(const Line& l, const Point2& p) {
+  return std::fabs((p.x - l.cx) * l.nx + (p.y - l.cy) * l.ny);
+}
+
+std::vector<size_t> Inliers(const Line& l, const std::vector<Point2>& m,
+                            const std::vector<size_t>& among, double band) {
+  std::vector<size_t> in;
+  for (size_t i : among) {
+    if (Distance(l, m[i]) <= band) in.push_back(i);
+  }
+  return in;
+}
+
+// Total least squares: through the centroid, normal along the covariance's
+// smaller eigenvector.
+Line FitLine(const std::vector<Point2>& m, const std::vector<size_t>& idx) {
+  Line l;
+  for (size_t i : idx) l.cx += m[i].x, l.cy += m[i].y;
+  l.cx /= idx.size(), l.cy /= idx.size();
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (size_t i : idx) {
+    const double dx = m[i].x - l.cx, dy = m[i].y - l.cy;
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  // The major axis is at angle phi = atan2(2 sxy, sxx - syy) / 2; the
+  // normal is perpendicular to it.
+  const double phi = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  l.nx = -std::sin(phi), l.ny = std::cos(phi);
+  return l;
+}
+
+struct Found {
+  bool ok = false;
+  Line line;
+  std::vector<size_t> inliers;
+};
+
+// The best of the candidate lines through two crossings of `among`, refined.
+Found BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, double band,
+               const EdgeLineOptions& o, uint64_t seed) {
+  Found best;
+  if (among.size() < 2) return best;
+  // Long baselines first (a third of the patch: accurate candidates); an
+  // edge that only clips a corner has none, and gets short ones.
+  for (double baseline : {1.0 / 3.0, 4.0 * band}) {
+    Pcg32 rng(seed);
+    int tried = 0;
+    for (int draw = 0; draw < 8 * o.candidates && tried < o.candidates; ++draw) {
+      const size_t a = among[rng.NextU32() % among.size()], b = among[rng.NextU32() % among.size()];
+      const double dx = m[b].x - m[a].x, dy = m[b].y - m[a].y, len = std::hypot(dx, dy);
+      if (len < baseline) continue;
+      ++tried;
+      Line l{m[a].x, m[a].y, -dy / len, dx / len};
+      std::vector<size_t> in = Inliers(l, m, among, band);
+      if (in.size() > best.inliers.size()) best = {true, l, std::move(in)};
+    }
+    if (best.ok) break;
+  }
+  if (!best.ok) return best;
+  for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
+    const Line l = FitLine(m, best.inliers);
+    std::vector<size_t> in = Inliers(l, m, among, band);
+    if (in.size() < 2) break;
+    best.line = l;
+    best.inliers = std::move(in);
+  }
+  return best;
+}
+
+double NormalDegrees(const Line& l) {
+  return ReduceDirection(std::atan2(l.ny, l.nx) * 180.0 / M_PI);
+}
+
+DirectionLobe None(const std::string& reason) {
+  DirectionLobe lobe;
+  lobe.reason = reason;
+  return lobe;
+}
+
+DirectionLobe Lobe(const Found& f, size_t crossings) {
+  DirectionLobe lobe;
+  lobe.status = DirectionStatus::kFound;
+  lobe.theta_deg = lobe.fit_theta_deg = NormalDegrees(f.line);
+  lobe.confidence = static_cast<double>(f.inliers.size()) / static_cast<double>(crossings);
+  return lobe;
+}
+
+Status ValidateOptions(const EdgeLineOptions& o) {
+  if (!(o.neighbour_radius >= 0.5 && o.neighbour_radius <= 5.0)) {
+    return Status::InvalidArgument("edge lines: neighbour_radius must be in [0.5, 5] spacings");
+  }
+  if (!(o.jump_fraction > 0.0 && o.jump_fraction < 1.0)) {
+    return Status::InvalidArgument("edge lines: jump_fraction must be in (0, 1)");
+  }
+  if (!(o.band > 0.0 && o.band <= 5.0)) return Status::InvalidArgument("edge lines: band must be in (0, 5]");
+  if (o.min_crossings < 2) return Status::InvalidArgument("edge lines: min_crossings must be at least 2");
+  if (!(o.min_share >= 0.0 && o.min_share <= 1.0) ||
+      !(o.second_min_share >= 0.0 && o.second_min_share <= 1.0)) {
+    return Status::InvalidArgument("edge lines: shares must be in [0, 1]");
+  }
+  if (o.candidates < 1 || o.candidates > 100000) {
+    return Status::InvalidArgument("edge lines: candidates must be in [1, 100000]");
+  }
+  if (!(o.min_separation_deg >= 0.0 && o.min_separation_deg <= 90.0)) {
+    return Status::InvalidArgument("edge lines: min_separation_deg must be in [0, 90]");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
+  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
+  if (Status s = ValidateOptions(o); !s.ok()) return s;
+  DirectionEstimate out;
+  out.has_second = o.second;
+  const std::vector<Point2>& p = patch.points;
+  const std::vector<double>& v = patch.values;
+  const size_t n = p.size();
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  const double range = *hi - *lo;
+  if (!(range > 1e-12 * std::max(1.0, std::fabs(*hi)))) {
+    out.first = None("constant patch");
+    out.second = None("constant patch");
+    return out;
+  }
+  const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
+  const double radius = o.neighbour_radius * spacing, jump = o.jump_fraction * range;
+
+  // Neighbouring pairs through a bucket grid of cells no smaller than the
+  // radius (so the 3 x 3 cells around a point hold all its neighbours).
+  const int g = std::max(1, static_cast<int>(std::floor(1.0 / radius)));
+  auto cell = [g](double t) { return std::min(g - 1, std::max(0, static_cast<int>(t * g))); };
+  std::vector<std::vector<uint32_t>> buckets(static_cast<size_t>(g) * g);
+  for (size_t i = 0; i < n; ++i) buckets[cell(p[i].y) * g + cell(p[i].x)].push_back(static_cast<uint32_t>(i));
+  std::vector<Point2> mid;
+  for (size_t i = 0; i < n; ++i) {
+    const int cx = cell(p[i].x), cy = cell(p[i].y);
+    for (int y = std::max(0, cy - 1); y <= std::min(g - 1, cy + 1); ++y) {
+      for (int x = std::max(0, cx - 1); x <= std::min(g - 1, cx + 1); ++x) {
+        for (uint32_t j : buckets[y * g + x]) {
+          if (j <= i) continue;
+          const double dx = p[j].x - p[i].x, dy = p[j].y - p[i].y;
+          if (dx * dx + dy * dy >= radius * radius) continue;
+          if (std::fabs(v[j] - v[i]) < jump) continue;
+          mid.push_back({0.5 * (p[i].x + p[j].x), 0.5 * (p[i].y + p[j].y)});
+        }
+      }
+    }
+  }
+  const size_t k = mid.size();
+  out.frequencies = k;
+  if (k < static_cast<size_t>(o.min_crossings)) {
+    out.first = None("no edge: " + std::to_string(k) + " neighbouring pairs jump");
+    out.second = None(out.first.reason);
+    return out;
+  }
+  std::vector<size_t> all(k);
+  for (size_t i = 0; i < k; ++i) all[i] = i;
+  const double band = o.band * spacing;
+  const uint64_t seed = HashCombine(static_cast<uint64_t>(n), static_cast<uint64_t>(k));
+  const Found first = BestLine(mid, all, band, o, seed);
+  const double need = std::max<double>(o.min_crossings, o.min_share * k);
+  if (!first.ok || first.inliers.size() < need) {
+    out.first = None("no straight edge: " + std::to_string(first.inliers.size()) + " of " +
+                     std::to_string(k) + " crossings on one line");
+    out.second = None(out.first.reason);
+    return out;
+  }
+  out.first = Lobe(first, k);
+  if (!o.second) return out;
+  std::vector<size_t> rest;
+  {
+    std::vector<bool> used(k, false);
+    for (size_t i : first.inliers) used[i] = true;
+    for (size_t i = 0; i < k; ++i) {
+      if (!used[i]) rest.push_back(i);
+    }
+  }
+  const Found second = BestLine(mid, rest, band, o, HashCombine(seed, 2));
+  const double need2 = std::max<double>(o.min_crossings, o.second_min_share * k);
+  if (!second.ok || second.inliers.size() < need2) {
+    out.second = None("no second edge: " + std::to_string(second.inliers.size()) + " of " +
+                      std::to_string(k) + " crossings on a second line");
+  } else if (AxialDistanceDeg(NormalDegrees(second.line), out.first.theta_deg) < o.min_separation_deg) {
+    out.second = None("the second line is parallel to the first");
+  } else {
+    out.second = Lobe(second, k);
+  }
+  return out;
+}
+
+}  // namespace alignset
