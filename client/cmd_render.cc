@@ -88,8 +88,9 @@ int Run(RenderOptions& o) {
               static_cast<long long>(o.size), static_cast<long long>(o.size), o.request.sampler.c_str(),
               o.request.spp);
   if (summary->prepass_per_pixel > 0) {
-    std::printf("samples per pixel: %u + %u pre-pass = %u\n", summary->samples_per_pixel,
-                summary->prepass_per_pixel, summary->total_per_pixel());
+    std::printf("samples per pixel: %u + %u pre-pass%s = %u\n", summary->samples_per_pixel,
+                summary->prepass_per_pixel, summary->prepass_reused ? " (reused in the estimate)" : "",
+                summary->total_per_pixel());
   } else {
     std::printf("samples per pixel: %u\n", summary->samples_per_pixel);
   }
@@ -126,6 +127,10 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("--prepass", o->request.prepass,
                  "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
                  "gridG, jgridG or samplesM, optionally cP (a confidence floor of P percent)")
+      ->capture_default_str();
+  c->add_option("--reuse-prepass", o->request.reuse_prepass,
+                 "fold the pre-pass's samples into each pixel's estimate, without bias (needs a "
+                 "samplesM pre-pass)")
       ->capture_default_str();
   c->add_option("--lattice-window", o->request.lattice_window_deg,
                  "aligned-lattice*: degrees either side of a pixel's θ its lattice is chosen for")

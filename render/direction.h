@@ -19,6 +19,12 @@ struct PixelDirection {
   double theta2 = 0.0;      // only for kTwo
   double kappa = 0.0;       // the estimator's concentration (0 for the geometry)
   double confidence = 0.0;  // share of the edge weight (geometry) or energy (estimator) in theta1
+  // The pre-pass's own estimate of the pixel's integral, when the pre-pass
+  // is one whose mean may be reused (prepass_samples > 0; Prepass::
+  // Reusable) in the pixel's estimate (render/prepass_reuse.h). Kept for a
+  // direction-less pixel too.
+  double prepass_mean = 0.0;
+  uint32_t prepass_samples = 0;
 };
 
 // The bound: the direction from the scene's geometry. The pixel's

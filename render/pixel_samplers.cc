@@ -11,6 +11,7 @@
 #include "core/sampling/shear.h"
 #include "core/util/angles.h"
 #include "core/util/hash.h"
+#include "render/prepass_reuse.h"
 
 namespace alignset::render {
 
@@ -286,7 +287,9 @@ std::vector<std::string> RenderSamplerNames() {
           "aligned-exact", "aligned-lattice", "aligned-lattice-exact", "line", "segment"};
 }
 
-StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c) {
+namespace {
+
+StatusOr<std::unique_ptr<PixelSampler>> MakeBaseSampler(const SamplerConfig& c) {
   const std::string& name = c.name;
   if (c.n < 1) return Status::InvalidArgument(name + ": N must be at least 1");
   auto need_dirs = [&](const std::vector<PixelDirection>* d) -> Status {
@@ -341,6 +344,19 @@ StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c)
     return std::unique_ptr<PixelSampler>(new PooledShifted({std::move(*probe)}, nullptr));
   }
   return std::unique_ptr<PixelSampler>(new PerPixelRegistry(name, c.n, NeedsShift(name)));
+}
+
+}  // namespace
+
+bool ReadsEstimatedDirections(const SamplerConfig& c) {
+  if (c.name == "line" || c.name == "segment") return c.orientation != LineOrientation::kRandom;
+  return c.name == "aligned" || c.name == "aligned-lattice" || c.name == "pmj02bn-sheared";
+}
+
+StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c) {
+  auto base = MakeBaseSampler(c);
+  if (!base.ok() || !c.reuse_prepass || !ReadsEstimatedDirections(c)) return base;
+  return ReusePrepass(std::move(*base), c.estimated, c.n);
 }
 
 }  // namespace alignset::render

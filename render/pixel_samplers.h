@@ -51,6 +51,9 @@ struct SamplerConfig {
   LineOrientation orientation = LineOrientation::kNormal;  // line, segment
   double segment_length = 0.5;             // segment, in pixel widths
   int pool = 64;                           // pooled samplers: distinct sets per N
+  // The samplers that read `estimated` add each pixel's randomized pre-pass
+  // to their estimate (render/prepass_reuse.h); the others ignore it.
+  bool reuse_prepass = false;
 };
 
 // Builds a sampler by name:
@@ -75,6 +78,10 @@ struct SamplerConfig {
 // INVALID_ARGUMENT for an unknown name, a missing input, or an N the
 // sampler cannot honour.
 StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& config);
+
+// Whether the sampler `c` builds steers by the estimated direction map (and
+// so pays for its pre-pass).
+bool ReadsEstimatedDirections(const SamplerConfig& c);
 
 // The names MakePixelSampler knows beyond the registry's.
 std::vector<std::string> RenderSamplerNames();

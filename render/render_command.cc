@@ -49,21 +49,25 @@ StatusOr<RenderSummary> RunRender(
   auto prepass = ParsePrepass(r.prepass);
   if (!prepass.ok()) return prepass.status();
   const std::unique_ptr<DirectionEstimator> estimator = MakeSpectralEstimator(*prepass);
-  // The pre-pass only for the samplers that read the estimated θ (it costs
-  // about 3 ms per pixel with grid16).
-  const bool uses_estimate =
-      r.sampler == "aligned" || r.sampler == "aligned-lattice" || r.sampler == "pmj02bn-sheared" ||
-      ((r.sampler == "line" || r.sampler == "segment") && r.orientation != LineOrientation::kRandom);
-  const std::vector<PixelDirection> estimated =
-      uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
-                    : std::vector<PixelDirection>(scene->size());
   SamplerConfig c;
   c.name = r.sampler;
   c.n = r.spp;
   c.exact = &exact;
-  c.estimated = &estimated;
   c.orientation = r.orientation;
   c.segment_length = r.segment_length;
+  // The pre-pass only for the samplers that read the estimated θ (it costs
+  // about 3 ms per pixel with grid16).
+  const bool uses_estimate = ReadsEstimatedDirections(c);
+  if (uses_estimate && r.reuse_prepass && !prepass->Reusable()) {
+    return Status::InvalidArgument(
+        "pre-pass " + prepass->Name() + " cannot be reused in the estimate (a grid's mean is " +
+        "biased or far noisier than the sampler's own); reuse needs samplesM, or turn reuse off");
+  }
+  c.reuse_prepass = uses_estimate && r.reuse_prepass;
+  const std::vector<PixelDirection> estimated =
+      uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
+                    : std::vector<PixelDirection>(scene->size());
+  c.estimated = &estimated;
   AlignedSetTable table;
   ShiftTile tile;
   if (r.sampler == "aligned" || r.sampler == "aligned-exact") {
@@ -100,6 +104,7 @@ StatusOr<RenderSummary> RunRender(
   summary.samples_per_pixel = r.spp;
   if (uses_estimate) {
     summary.prepass_per_pixel = static_cast<uint32_t>(estimator->evaluations());
+    summary.prepass_reused = c.reuse_prepass;
     summary.note += (summary.note.empty() ? "" : "; ") + std::string("directions: ") +
                     estimator->name() + " (" + std::to_string(estimator->evaluations()) +
                     " evaluations per pixel)";

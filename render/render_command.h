@@ -25,6 +25,9 @@ struct RenderRequest {
   double segment_length = 0.5;
   int threads = 2;
   std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
+  // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h);
+  // needs a randomized pre-pass.
+  bool reuse_prepass = kDefaultReusePrepass;
   double lattice_window_deg = 1.0;  // aligned-lattice*: the window of normals a generator is chosen for
   ConnectOptions server;       // aligned, aligned-exact only
 };
@@ -38,6 +41,7 @@ struct RenderSummary {
   // samplers that read no estimated direction).
   uint32_t samples_per_pixel = 0;
   uint32_t prepass_per_pixel = 0;
+  bool prepass_reused = false;  // the pre-pass's samples are in the estimate
   uint32_t total_per_pixel() const { return samples_per_pixel + prepass_per_pixel; }
   std::string note;  // one line on what was used (estimator, sets fetched, tile)
 };

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "core/analysis/direction_estimate.h"
+#include "core/analysis/edge_line_fit.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/util/hash.h"
 
@@ -15,14 +16,15 @@ std::string Prepass::Name() const {
     case Kind::kGrid: return "grid" + std::to_string(count) + floor;
     case Kind::kJitteredGrid: return "jgrid" + std::to_string(count) + floor;
     case Kind::kSamples: return "samples" + std::to_string(count) + floor;
+    case Kind::kEdgeLines: return "edges" + std::to_string(count) + floor;
   }
   return "?";
 }
 
 StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   auto refuse = [&] {
-    return Status::InvalidArgument("pre-pass must be gridG or jgridG (G in [8, 64]) or samplesM "
-                                   "(M in [16, 4096]), optionally followed by cP (a confidence "
+    return Status::InvalidArgument("pre-pass must be gridG or jgridG (G in [8, 64]) or samplesM or "
+                                   "edgesM (M in [16, 4096]), optionally followed by cP (a confidence "
                                    "floor of P percent), got '" + spec + "'");
   };
   // 1 to 5 digits, or -1.
@@ -42,6 +44,11 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   } else if (spec.rfind("grid", 0) == 0) {
     p.kind = Prepass::Kind::kGrid;
     rest = spec.substr(4);
+  } else if (spec.rfind("edges", 0) == 0) {
+    p.kind = Prepass::Kind::kEdgeLines;
+    rest = spec.substr(5);
+    lo = 16;
+    hi = 4096;
   } else if (spec.rfind("samples", 0) == 0) {
     p.kind = Prepass::Kind::kSamples;
     rest = spec.substr(7);
@@ -80,27 +87,52 @@ PixelDirection FromEstimate(const DirectionEstimate& e, int min_confidence_pct) 
 
 class SpectralEstimator : public DirectionEstimator {
  public:
-  explicit SpectralEstimator(const Prepass& p) : p_(p) { options_.second = true; }
-  std::string name() const override { return "core/analysis EstimateDirection, " + p_.Name(); }
+  explicit SpectralEstimator(const Prepass& p) : p_(p) {
+    options_.second = true;
+    lines_.second = true;
+  }
+  std::string name() const override {
+    return std::string(p_.kind == Prepass::Kind::kEdgeLines ? "core/analysis EstimateEdgeLines, "
+                                                            : "core/analysis EstimateDirection, ") +
+           p_.Name();
+  }
   int evaluations() const override { return p_.Evaluations(); }
 
   PixelDirection Estimate(const PixelIntegrand& f, uint64_t pixel_seed) const override {
-    const StatusOr<DirectionEstimate> e = Run(f, pixel_seed);
+    double mean = 0.0;
+    const StatusOr<DirectionEstimate> e = Run(f, pixel_seed, &mean);
     // A valid pre-pass is never refused; should it be, the pixel gets what a
     // direction-less pixel gets rather than a made-up angle.
-    if (e.ok()) return FromEstimate(*e, p_.min_confidence_pct);
-    refused_.fetch_add(1, std::memory_order_relaxed);
-    return PixelDirection{};
+    PixelDirection d;
+    if (e.ok()) {
+      d = FromEstimate(*e, p_.min_confidence_pct);
+    } else {
+      refused_.fetch_add(1, std::memory_order_relaxed);
+    }
+    if (p_.Reusable()) {
+      d.prepass_mean = mean;
+      d.prepass_samples = static_cast<uint32_t>(p_.Evaluations());
+    }
+    return d;
   }
   int64_t refusals() const override { return refused_.load(); }
 
  private:
-  StatusOr<DirectionEstimate> Run(const PixelIntegrand& f, uint64_t pixel_seed) const {
-    if (p_.kind == Prepass::Kind::kSamples) {
+  // The pre-pass's values go to the estimator; their mean to *mean.
+  StatusOr<DirectionEstimate> Run(const PixelIntegrand& f, uint64_t pixel_seed,
+                                  double* mean) const {
+    auto average = [](const std::vector<double>& v) {
+      double s = 0.0;
+      for (double x : v) s += x;
+      return s / static_cast<double>(v.size());
+    };
+    if (p_.Scattered()) {
       SampledPatch s;
       s.points = OwenScrambledSobol(static_cast<uint32_t>(p_.count), pixel_seed);
       s.values.reserve(s.points.size());
       for (const Point2& q : s.points) s.values.push_back(f.Eval({q.x, q.y}));
+      *mean = average(s.values);
+      if (p_.kind == Prepass::Kind::kEdgeLines) return EstimateEdgeLines(s, lines_);
       return EstimateDirection(s, options_);
     }
     const int g = p_.count;
@@ -113,11 +145,13 @@ class SpectralEstimator : public DirectionEstimator {
         grid.values[static_cast<size_t>(j) * g + i] = f.Eval({(i + u) / g, (j + v) / g});
       }
     }
+    *mean = average(grid.values);
     return EstimateDirection(grid, options_);
   }
 
   Prepass p_;
   DirectionOptions options_;
+  EdgeLineOptions lines_;
   mutable std::atomic<int64_t> refused_{0};
 };
 
@@ -125,7 +159,10 @@ class SpectralEstimator : public DirectionEstimator {
 
 PixelDirection ApplyConfidenceFloor(const PixelDirection& d, int min_confidence_pct) {
   if (d.kind == PixelDirection::Kind::kNone || d.confidence * 100.0 >= min_confidence_pct) return d;
-  return PixelDirection{};
+  PixelDirection none;
+  none.prepass_mean = d.prepass_mean;
+  none.prepass_samples = d.prepass_samples;
+  return none;
 }
 
 std::unique_ptr<DirectionEstimator> MakeSpectralEstimator(const Prepass& prepass) {

@@ -21,30 +21,49 @@ namespace alignset::render {
 //                value given to the cell (a jittered pre-pass), grid path;
 //  - "samplesM": M Owen-scrambled Sobol points over the pixel (the
 //                renderer's own low-spp pass), the scattered path (type-1
-//                NUFFT, Monte Carlo noise floor and significance test).
+//                NUFFT, Monte Carlo noise floor and significance test);
+//  - "edgesM":   the same M points, the direction from the line through
+//                the midpoints of neighbouring samples whose values jump
+//                (core/analysis/edge_line_fit.h): on a straight step 0.5°
+//                median at M = 256 where the scattered spectral path is 20°
+//                (bench/results/direction_accuracy.txt).
 // A suffix "cP" (grid16c50) adds the renderer's own floor on the estimator's
 // confidence (the share of the weight in the fitted lobe, here P percent):
 // below it the pixel is treated as direction-less (the first lobe's; a
-// found second lobe is kept). Measured on the scenes'
-// pixels with grid16 (render_bench, README): a pure linear gradient is
-// "found" with confidence 0.30-0.44 at an angle up to 34 degrees off its
-// gradient, clean edges have a median of 0.75.
+// found second lobe is kept).
+//
+// Only samplesM and edgesM are reusable in the pixel's estimate
+// (render/prepass_reuse.h): their mean is an Owen-Sobol estimate of the
+// pixel. gridG's is biased (the
+// cell centres); jgridG's is unbiased but, measured on the scenes' pixels
+// at 256 samples (tests/render/prepass_reuse_test.cc), 2-2.5 times
+// Owen-Sobol's squared error on edges and 10^3 times on smooth pixels, and a
+// grid shifted as a whole by one random offset, which would keep the grid
+// path, errs to first order in the offset on a pixel that is not periodic
+// (20 and 10^5 times), so neither is offered for reuse.
 struct Prepass {
-  enum class Kind { kGrid, kJitteredGrid, kSamples };
+  enum class Kind { kGrid, kJitteredGrid, kSamples, kEdgeLines };
   Kind kind = Kind::kGrid;
   int count = 16;            // the grid side G, or the sample count M
   int min_confidence_pct = 0;
   std::string Name() const;
-  int Evaluations() const { return kind == Kind::kSamples ? count : count * count; }
+  bool Scattered() const { return kind == Kind::kSamples || kind == Kind::kEdgeLines; }
+  int Evaluations() const { return Scattered() ? count : count * count; }
+  // Whether the mean of the pre-pass's values is handed on for reuse (see
+  // above: the Owen-Sobol pre-passes).
+  bool Reusable() const { return Scattered(); }
 };
 
 // INVALID_ARGUMENT for anything but gridG / jgridG (8 <= G <= 64) or
-// samplesM (16 <= M <= 4096), each with an optional cP (0 <= P <= 100).
+// samplesM / edgesM (16 <= M <= 4096), each with an optional cP (0 <= P <= 100).
 StatusOr<Prepass> ParsePrepass(const std::string& spec);
 
 // The default pre-pass of `aligned` (README, "Rendered proof", measured
 // against the others in bench/results/render_directions.txt).
 inline constexpr const char* kDefaultPrepass = "grid16c50";
+// Whether `alignset render` folds the pre-pass into the pixel's estimate by
+// default (render/prepass_reuse.h).
+inline constexpr bool kDefaultReusePrepass = false;
 
 std::unique_ptr<DirectionEstimator> MakeSpectralEstimator(const Prepass& prepass);
 

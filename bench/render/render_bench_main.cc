@@ -44,6 +44,7 @@
 #include "render/direction.h"
 #include "render/lattice_sets.h"
 #include "render/pixel_samplers.h"
+#include "render/pixel_shape.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/set_fetch.h"
@@ -80,6 +81,7 @@ struct Variant {
   LineOrientation orientation = LineOrientation::kNormal;
   bool per_pixel_shift = true;
   std::string prepass;  // aligned: the estimator's pre-pass (empty: the one of record)
+  bool reuse = false;   // the pre-pass folded into the estimate (render/prepass_reuse.h)
 };
 
 bool IsLattice(const Variant& v) { return v.sampler.rfind("aligned-lattice", 0) == 0; }
@@ -90,6 +92,13 @@ std::vector<Variant> AllVariants() {
                         "screen-space-rank1", "aligned", "aligned-exact", "aligned-lattice",
                         "aligned-lattice-exact"}) {
     v.push_back({s, s});
+  }
+  // Every sample counted and used: the estimated samplers with their
+  // (randomized) pre-pass folded in; labels end in "+reuse".
+  for (const char* s : {"aligned", "aligned-lattice", "pmj02bn-sheared"}) {
+    Variant r{std::string(s) + "+reuse", s};
+    r.reuse = true;
+    v.push_back(r);
   }
   Variant axis{"aligned-none-axis", "aligned"};
   axis.policy.none = AlignedPolicy::None::kAxisSet;
@@ -123,9 +132,17 @@ Subsets MakeSubsets(const Scene& scene, const std::vector<PixelDirection>& exact
   Subsets s;
   s.names = {"edge", "smooth", "edge_one", "edge_two", "edge_est_none", "smooth_est_none",
              "smooth_est_dir"};
+  // The edge pixels by type (render/pixel_shape.h): edge_straight, ...
+  const std::vector<PixelShape> types = {PixelShape::kStraight, PixelShape::kParallel,
+                                         PixelShape::kCurved, PixelShape::kCorner};
+  for (PixelShape t : types) s.names.push_back("edge_" + ShapeName(t));
   s.pixels.resize(s.names.size());
   const std::vector<PixelClass> classes = scene.Classes();
   for (size_t i = 0; i < classes.size(); ++i) {
+    const PixelShape shape = ClassifyShape(scene.Pixel(i));
+    for (size_t t = 0; t < types.size(); ++t) {
+      if (shape == types[t]) s.pixels[7 + t].push_back(i);
+    }
     const bool edge = classes[i] == PixelClass::kEdge, smooth = classes[i] == PixelClass::kSmooth;
     const bool est_none = estimated[i].kind == PixelDirection::Kind::kNone;
     if (edge) s.pixels[0].push_back(i);
@@ -279,6 +296,15 @@ int Main(int argc, char** argv) {
     }
   }
 
+  for (const Variant& v : variants) {
+    if (v.reuse && !ParsePrepass(a["prepass"]).ok()) break;  // refused below, with the reason
+    if (v.reuse && !ParsePrepass(a["prepass"])->Reusable()) {
+      std::fprintf(stderr, "render_bench: %s needs a reusable --prepass (samplesM), "
+                   "got %s\n", v.label.c_str(), a["prepass"].c_str());
+      return 2;
+    }
+  }
+
   ConnectOptions opts;
   opts.address = a["server"];
   auto client = ServiceClient::Connect(opts);
@@ -372,6 +398,9 @@ int Main(int argc, char** argv) {
     }
     WriteNpy(out + "/images/" + name + "_reference.npy", shape, d.reference);
     WriteNpy(out + "/images/" + name + "_classes.npy", shape, cls);
+    std::vector<double> shapes;
+    for (size_t i = 0; i < d.scene.size(); ++i) shapes.push_back(double(ClassifyShape(d.scene.Pixel(i))));
+    WriteNpy(out + "/images/" + name + "_shapes.npy", shape, shapes);
     WriteNpy(out + "/images/" + name + "_theta_exact.npy", shape, t_exact);
     WriteNpy(out + "/images/" + name + "_theta_estimated.npy", shape, t_est);
     WriteNpy(out + "/images/" + name + "_kind_exact.npy", shape, k_exact);
@@ -492,6 +521,7 @@ int Main(int argc, char** argv) {
         c.sets = IsLattice(v) ? &lattices : &table;
         c.policy = v.policy;
         c.per_pixel_shift = v.per_pixel_shift;
+        c.reuse_prepass = v.reuse;
         c.tile = &tile;
         c.orientation = v.orientation;
         auto sampler = MakePixelSampler(c);

@@ -16,8 +16,13 @@ import math
 import os
 import sys
 
-# The samplers that read an estimated direction pay for its pre-pass.
+# The samplers that read an estimated direction pay for its pre-pass; a
+# "+reuse" variant folds the pre-pass into its estimate and pays the same.
 ESTIMATED = {"aligned", "aligned-lattice", "pmj02bn-sheared"}
+
+
+def estimated(sampler):
+    return sampler.split("+")[0] in ESTIMATED
 
 
 def read(path):
@@ -84,42 +89,58 @@ def main():
                "columns compare at the same N (the pre-pass not counted: the old accounting); "
                "the last two compare at the same total samples per pixel, the baselines "
                "rendered again at N + the pre-pass (the best of Owen-Sobol, pmj02bn, rank-1 "
-               "lattice and screen-space rank-1 per seed).\n"
+               "lattice and screen-space rank-1 per seed). A `+reuse` row folds its pre-pass into "
+               "the estimate without bias (render/prepass_reuse.h).\n"
                % (" ".join(seeds), a.n, prepass_evals, prepass))
     for scene in scenes:
         for n in ns:
             out.append("\n## %s, N = %d\n" % (scene, n))
             out.append("| sampler | total spp | edge MSE per seed | OS / sampler, edge | "
                        "OS / sampler, smooth | OS / sampler, all | OS at the same total spp / sampler, edge | "
-                       "best baseline at the same total spp / sampler, edge |")
-            out.append("|---|---:|---|---|---|---|---|---|")
+                       "best baseline at the same total spp / sampler, edge | "
+                       "OS at the same total spp / sampler, smooth | "
+                       "best baseline at the same total spp / sampler, all |")
+            out.append("|---|---:|---|---|---|---|---|---|---|---|")
             for smp in samplers:
                 per = [runs[s].get((scene, smp, n)) for s in seeds]
                 if any(p is None for p in per):
                     continue
                 os_ = [runs[s].get((scene, "owen-sobol", n)) for s in seeds]
-                total = n + (prepass_evals if smp in ESTIMATED else 0)
+                total = n + (prepass_evals if estimated(smp) else 0)
                 edge = [float(p["mse_edge"]) for p in per]
                 r_edge = [float(o["mse_edge"]) / e for o, e in zip(os_, edge) if o and e > 0]
                 r_smooth = [float(o["mse_smooth"]) / float(p["mse_smooth"])
                             for o, p in zip(os_, per) if o and float(p["mse_smooth"]) > 0]
                 r_all = [float(o["mse_all"]) / float(p["mse_all"]) for o, p in zip(os_, per) if o]
-                counted = os_counted = "—"
-                if smp in ESTIMATED:
+                counted = os_counted = os_counted_smooth = counted_all = "—"
+                if estimated(smp):
                     os_counted = ratio_text([float(runs[s][(scene, "owen-sobol", total)]["mse_edge"]) / e
                                              for s, e in zip(seeds, edge)
                                              if (scene, "owen-sobol", total) in runs[s]])
                     best = []
                     for s, e in zip(seeds, edge):
                         cands = [float(r["mse_edge"]) for k, r in runs[s].items()
-                                 if k[0] == scene and k[2] == total and k[1] not in ESTIMATED
+                                 if k[0] == scene and k[2] == total and not estimated(k[1])
                                  and not k[1].endswith("-exact")]
                         if cands:
                             best.append(min(cands) / e)
                     counted = ratio_text(best)
-                out.append("| %s | %d | %s | %s | %s | %s | %s | %s |" % (
+                    os_counted_smooth = ratio_text(
+                        [float(runs[s][(scene, "owen-sobol", total)]["mse_smooth"]) / float(p["mse_smooth"])
+                         for s, p in zip(seeds, per)
+                         if (scene, "owen-sobol", total) in runs[s] and float(p["mse_smooth"]) > 0])
+                    best_all = []
+                    for s, p in zip(seeds, per):
+                        cands = [float(r["mse_all"]) for k, r in runs[s].items()
+                                 if k[0] == scene and k[2] == total and not estimated(k[1])
+                                 and not k[1].endswith("-exact")]
+                        if cands:
+                            best_all.append(min(cands) / float(p["mse_all"]))
+                    counted_all = ratio_text(best_all)
+                out.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     smp, total, ", ".join("%.3g" % e for e in edge), ratio_text(r_edge),
-                    ratio_text(r_smooth), ratio_text(r_all), os_counted, counted))
+                    ratio_text(r_smooth), ratio_text(r_all), os_counted, counted,
+                    os_counted_smooth, counted_all))
     text = "\n".join(out) + "\n"
     with open(a.out, "w") as f:
         f.write(text)

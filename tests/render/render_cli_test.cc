@@ -67,6 +67,19 @@ TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid8 -o " + dir_ + "/l8.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass = 128\n"), std::string::npos) << Said(r);
+  // Reused, the pre-pass is still counted, and said to be in the estimate;
+  // a grid pre-pass cannot be reused (a one-line usage error).
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass samples64 --reuse-prepass true -o " +
+             dir_ + "/lr.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass (reused in the estimate) = 128\n"),
+            std::string::npos)
+      << Said(r);
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --reuse-prepass true -o " + dir_ + "/lg.npy");
+  EXPECT_EQ(r.exit_code, 2) << Said(r);
+  EXPECT_NE(Said(r).find("cannot be reused"), std::string::npos) << Said(r);
+  const std::string refused = Said(r);
+  EXPECT_EQ(std::count(refused.begin(), refused.end(), '\n'), 1) << refused;
   r = RunCli("render --size 12 --sampler aligned-lattice-exact -n 64 -o " + dir_ + "/le.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);
