@@ -7,7 +7,7 @@
 //
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
-//       [--construction optimized|lattice|lattice-start|warm --warm-root DEG
+//       [--construction optimized|lattice|lattice-start|net|warm --warm-root DEG
 //        [--warm-iterations I --warm-lr-scale X --warm-warmup F --warm-anneal R --warm-zero R]]
 //       [--first-seed S]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
@@ -45,6 +45,7 @@
 #include "core/analysis/integrands.h"
 #include "core/analysis/variance.h"
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/aligned_net.h"
 #include "core/optimize/optimizer.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/spectral/fast_engine.h"
@@ -80,6 +81,8 @@ struct Options {
   double warm_lr_scale = 1.0;
   double warm_warmup = 0.0;
   double warm_anneal = 1.0;
+  // --construction net: the aligned net's options (core/optimize/aligned_net.h).
+  AlignedNetOptions net;
   double warm_zero = -1.0;  // < 0: the profile's zero radius
   int threads = 2;
   OptimizerOptions opt;
@@ -133,9 +136,9 @@ bool ParseArgs(int argc, char** argv, Options* o) {
     } else if (a == "--construction") {
       o->construction = next();
       if (o->construction != "optimized" && o->construction != "lattice" &&
-          o->construction != "lattice-start" && o->construction != "warm") {
-        std::fprintf(stderr, "integrand_family: --construction is optimized, lattice, lattice-start "
-                             "or warm\n");
+          o->construction != "lattice-start" && o->construction != "warm" && o->construction != "net") {
+        std::fprintf(stderr, "integrand_family: --construction is optimized, lattice, lattice-start, "
+                             "warm or net\n");
         std::exit(2);
       }
     } else if (a == "--warm-root") {
@@ -144,6 +147,16 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->warm_iterations = std::stoi(next());
     } else if (a == "--warm-zero") {
       o->warm_zero = std::stod(next());
+    } else if (a == "--net-radius") {
+      o->net.radius_factor = std::stod(next());
+    } else if (a == "--net-frequencies") {
+      o->net.max_frequencies = std::stoi(next());
+    } else if (a == "--net-sweeps") {
+      o->net.sweeps = std::stoi(next());
+    } else if (a == "--net-smooth") {
+      o->net.smooth_weight = std::stod(next());
+    } else if (a == "--net-window") {
+      o->net.window_deg = std::stod(next());
     } else if (a == "--warm-anneal") {
       o->warm_anneal = std::stod(next());
     } else if (a == "--warm-warmup") {
@@ -188,9 +201,10 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|warm]\n"
+          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|warm]\n"
           "  [--warm-root DEG] [--warm-iterations I] [--warm-lr-scale X] [--warm-warmup F]\n"
           "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
+          "  [--net-radius F] [--net-frequencies K] [--net-sweeps S] [--net-window DEG] [--net-smooth W]\n"
           "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
           "  [--tolerance T] [--cache DIR] [--out FILE.tsv]\n");
@@ -403,6 +417,21 @@ void SaveSet(const std::string& path, const PointSet& p) {
 // The aligned set for (n, theta, seed), optimized or from the cache; the
 // optimization's wall time goes into *seconds when it ran.
 PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double* seconds) {
+  if (o.construction == "net") {
+    std::vector<double> dirs = {theta};
+    if (!std::isnan(o.theta2)) dirs.push_back(o.theta2);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto net = AlignedNet(n, dirs, static_cast<uint64_t>(seed), o.net);
+    *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!net.ok()) {
+      std::fprintf(stderr, "integrand_family: %s\n", net.status().message().c_str());
+      std::exit(1);
+    }
+    std::printf("# net n=%u theta=%g seed=%d: objective %.3e -> %.3e, %d flips in %d sweeps, %d frequencies, %.2f s\n",
+                n, theta, seed, net->start_objective, net->objective, net->flips, net->sweeps, net->frequencies,
+                *seconds);
+    return std::move(net->points);
+  }
   if (o.construction == "lattice") {
     std::vector<double> dirs = {theta};
     if (!std::isnan(o.theta2)) dirs.push_back(o.theta2);
