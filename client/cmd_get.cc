@@ -45,7 +45,7 @@ struct GetOptions {
   // --space 1dir: the whole one-direction space of N (the 46 canonical sets,
   // phi = 0..45) in one batch call, as (46, N, 2) .npy or 46 text sets.
   std::string space;
-  // "optimized" (the default) or "lattice": how the server makes the set.
+  // "optimized" (the default), "lattice" or "net": how the server makes the set.
   std::string construction = "optimized";
   ServiceOptions service;
 };
@@ -257,9 +257,10 @@ int RunGet(GetOptions o) {
     const SetInfo& si = s.info;
     if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
                              static_cast<unsigned long long>(si.seed));
-    if (si.construction == "lattice") {
-      std::fprintf(report, "construction   aligned rank-1 lattice, %.3f s, profile %s\n",
-                   si.optimize_seconds, si.profile.c_str());
+    if (si.construction == "lattice" || si.construction == "net") {
+      std::fprintf(report, "construction   aligned %s, %.3f s, profile %s\n",
+                   si.construction == "net" ? "(0,m,2)-net" : "rank-1 lattice", si.optimize_seconds,
+                   si.profile.c_str());
     } else {
       std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
                    si.loss_spectrum, si.loss_sw);
@@ -306,10 +307,11 @@ void AddGetCommand(CLI::App& app) {
                 "grid one direction is served on: 0.25 or 1 degree (default: the server's)")
       ->check(CLI::IsMember({"1", "0.25"}));
   c->add_option("--construction", o->construction,
-                "optimized (the server's optimized sets) or lattice (an aligned rank-1\n"
-                "lattice, cached apart from them)")
+                "optimized (the server's optimized sets), lattice (an aligned rank-1\n"
+                "lattice) or net (an aligned (0,m,2)-net, N a power of two); each cached\n"
+                "apart from the others")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

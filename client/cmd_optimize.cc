@@ -11,6 +11,7 @@
 #include "client/point_file.h"
 #include "client/progress.h"
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/aligned_net.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/direction_budget.h"
 #include "core/util/angles.h"
@@ -40,8 +41,9 @@ struct OptimizeOptions {
   // "current" (algorithm version 5) or "supplement" (the paper's flat loss
   // and K, alignset's version 2), for comparisons.
   std::string profile = "current";
-  // "optimized" (the descent) or "lattice" (an aligned rank-1 lattice,
-  // core/optimize/aligned_lattice.h: no descent, no engine).
+  // "optimized" (the descent), "lattice" (an aligned rank-1 lattice,
+  // core/optimize/aligned_lattice.h) or "net" (an aligned net,
+  // core/optimize/aligned_net.h): the last two need no engine.
   std::string construction = "optimized";
   double window = 1.0;
 };
@@ -99,6 +101,54 @@ int RunLattice(const OptimizeOptions& o) {
   return kExitOk;
 }
 
+// --construction net: -m gives realizations from the seeds S, S+1, ...,
+// each its own flip search.
+int RunNet(const OptimizeOptions& o) {
+  AlignedNetOptions net;
+  net.window_deg = o.window;
+  const uint32_t n = static_cast<uint32_t>(o.n);
+  if (!IsStdStream(o.out)) {
+    if (Status s = WritePointFile(o.out, {}, "alignset: construction in progress"); !s.ok()) {
+      return Failure(s);
+    }
+  }
+  std::string dir_text;
+  for (double d : o.dirs) {
+    char one[32];
+    std::snprintf(one, sizeof(one), "%s%g", dir_text.empty() ? "" : ",", d);
+    dir_text += one;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const int sets = o.sets.value_or(1);
+  std::vector<PointSet> points;
+  std::string comment;
+  int flips = 0;
+  for (int i = 0; i < sets; ++i) {
+    auto made = AlignedNet(n, o.dirs, o.seed + static_cast<uint64_t>(i), net);
+    if (!made.ok()) return Usage(made.status());
+    flips += made->flips;
+    points.push_back(std::move(made->points));
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "%salignset aligned net%s: N=%u directions(deg, edge normal)=%s window=%g seed=%llu",
+                  i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", n, dir_text.c_str(),
+                  o.window, static_cast<unsigned long long>(o.seed + i));
+    comment += line;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
+  FILE* report = ReportStreamFor(o.out);
+  std::fprintf(report, "N              %u\n", n);
+  std::fprintf(report, "directions     %s (deg, spectral = edge normal)\n", dir_text.c_str());
+  std::fprintf(report, "construction   aligned (0,m,2)-net, %d flips chosen (window +-%g deg)\n", flips,
+               o.window);
+  std::fprintf(report, "time           %.3f s\n", seconds);
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
+  return kExitOk;
+}
+
 int RunOptimize(const OptimizeOptions& o) {
   if (o.dirs.size() > static_cast<size_t>(kMaxArbitraryDirections)) {
     return Usage(Status::InvalidArgument(
@@ -120,6 +170,7 @@ int RunOptimize(const OptimizeOptions& o) {
     }
   }
   if (o.construction == "lattice") return RunLattice(o);
+  if (o.construction == "net") return RunNet(o);
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
   const bool supplement = o.profile == "supplement";
@@ -256,11 +307,12 @@ void AddOptimizeCommand(CLI::App& app) {
                 "several sets, from the seeds S, S+1, ...: '#'-separated text, (m, N, 2) .npy")
       ->check(IntegerIn(1, 4096));
   c->add_option("--construction", o->construction,
-                "optimized (gradient descent from Owen-scrambled Sobol) or lattice (an aligned\n"
+                "optimized (gradient descent from Owen-scrambled Sobol), lattice (an aligned\n"
                 "rank-1 lattice: its generator chosen by the exact variance of step edges\n"
-                "within --window degrees of each direction)")
+                "within --window degrees of each direction) or net (an aligned (0,m,2)-net:\n"
+                "its scrambling chosen for those edges; N a power of two)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
   c->add_option("--window", o->window,
                 "lattice: the half-width in degrees of the window of edge directions scored")
       ->capture_default_str()

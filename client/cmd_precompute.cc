@@ -35,7 +35,7 @@ struct PrecomputeOptions {
   std::string shard;
   int64_t realizations = 1;
   std::string angle_step = "1";  // the one-direction grid: "1" (46 keys) or "0.25" (181)
-  std::string construction = "optimized";  // or "lattice"
+  std::string construction = "optimized";  // or "lattice" or "net"
   ServiceOptions service;
 };
 
@@ -86,8 +86,8 @@ int RunPrecompute(const PrecomputeOptions& o) {
   if (!last.ok()) return Failure(last.status());
   progress.Finish("");
   std::printf("items          %llu\n", static_cast<unsigned long long>(last->total));
-  // A lattice is constructed, not optimized; the count is the same field.
-  std::printf("%s%llu\n", o.construction == "lattice" ? "constructed    " : "optimized      ",
+  // A lattice or net is constructed, not optimized; the count is the same field.
+  std::printf("%s%llu\n", o.construction != "optimized" ? "constructed    " : "optimized      ",
               static_cast<unsigned long long>(last->done));
   std::printf("cached already %llu\n", static_cast<unsigned long long>(last->cached_already));
   std::printf("failed         %llu\n", static_cast<unsigned long long>(last->failed));
@@ -128,10 +128,10 @@ void AddPrecomputeCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"1", "0.25"}));
   c->add_option("--construction", o->construction,
-                "optimized (the server's optimized sets) or lattice (aligned rank-1 lattices,\n"
-                "cached apart from them)")
+                "optimized (the server's optimized sets), lattice (aligned rank-1 lattices) or\n"
+                "net (aligned (0,m,2)-nets, N a power of two), each cached apart")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }

@@ -15,7 +15,11 @@ namespace alignset::server {
 //   kLatticeProfile. Realization r is Rank1LatticePoints(N, g, r): the seed
 //   is the realization number itself (not the server's --seed), so the
 //   profile names everything the set depends on.
-enum class Construction { kOptimized, kLattice };
+// - kNet ("net"): an aligned net (core/optimize/aligned_net.h), a (0,m,2)-net
+//   of N = 2^m points whose scrambling is chosen for the key's exact
+//   direction(s) +-kNetWindowDeg, cached under kNetProfile; realization r
+//   starts its flips from seed r. N must be a power of two.
+enum class Construction { kOptimized, kLattice, kNet };
 
 // The lattice construction's version (bump it, and kLatticeProfile with it,
 // whenever ChooseAlignedLatticeGenerator or Rank1LatticePoints would give a
@@ -25,12 +29,19 @@ inline constexpr double kLatticeWindowDeg = 1.0;
 // The profile of every lattice key: "lattice", the version, the window in
 // degrees. Not a hex id, so no optimizer profile can ever equal it.
 inline constexpr const char* kLatticeProfile = "lattice-v1-w1";
+// The net construction's version, window and profile, in the same way.
+inline constexpr int kNetAlgorithmVersion = 1;
+inline constexpr double kNetWindowDeg = 1.0;
+inline constexpr const char* kNetProfile = "net-v1-w1";
 
-// "" or "optimized" -> kOptimized, "lattice" -> kLattice; anything else
-// INVALID_ARGUMENT naming the known constructions.
+// "" or "optimized" -> kOptimized, "lattice" -> kLattice, "net" -> kNet;
+// anything else INVALID_ARGUMENT naming the known constructions.
 StatusOr<Construction> ParseConstruction(const std::string& name);
-// "optimized" or "lattice".
+// "optimized", "lattice" or "net".
 const char* ConstructionName(Construction c);
+// INVALID_ARGUMENT when the construction cannot make N points (a net needs
+// a power of two from 16 to 65536).
+Status ValidateConstructionSize(Construction c, uint32_t n);
 // The construction a stored key's profile belongs to.
 Construction ConstructionOfProfile(const std::string& profile);
 

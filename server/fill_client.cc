@@ -40,10 +40,11 @@ FillFunction MakeWriterFill(const std::string& address, const std::string& token
     if (key.dirs.count == 2) req.add_directions_deg(Phi2Degrees(key.dirs));
     req.set_steps_per_degree(key.dirs.count == 1 && key.dirs.phi1_quarter != 0 ? 4 : 1);
     req.set_realization(key.realization);
-    // A lattice key asks the writer for the lattice; any other profile is
-    // the optimized construction (checked against the answer below).
-    if (ConstructionOfProfile(key.profile) == Construction::kLattice) {
-      req.set_construction(ConstructionName(Construction::kLattice));
+    // A lattice or net key asks the writer for its construction; any other
+    // profile is the optimized construction (checked against the answer
+    // below).
+    if (const Construction c = ConstructionOfProfile(key.profile); c != Construction::kOptimized) {
+      req.set_construction(ConstructionName(c));
     }
     grpc::ClientContext ctx;
     ctx.set_deadline(std::chrono::system_clock::now() +

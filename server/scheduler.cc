@@ -8,6 +8,7 @@
 
 #include "core/align/key_lineage.h"
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/aligned_net.h"
 #include "core/optimize/realization.h"
 
 namespace alignset::server {
@@ -170,6 +171,7 @@ Scheduler::~Scheduler() { Shutdown(); }
 
 std::string Scheduler::ProfileFor(uint32_t n, Construction construction) const {
   if (construction == Construction::kLattice) return kLatticeProfile;
+  if (construction == Construction::kNet) return kNetProfile;
   std::lock_guard<std::mutex> lock(profile_mu_);
   auto it = profiles_.find(n);
   if (it != profiles_.end()) return it->second;
@@ -506,6 +508,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     }
     if (options_.fill) return FillSlice(job);
     if (ConstructionOfProfile(key.profile) == Construction::kLattice) return LatticeSlice(job);
+    if (ConstructionOfProfile(key.profile) == Construction::kNet) return NetSlice(job);
     if (job->chain.empty()) PlanLineage(job.get());
     const storage::SetKey& target = job->chain[job->chain_next];
     OptimizationProblem problem;
@@ -749,6 +752,40 @@ Scheduler::SliceEnd Scheduler::LatticeSlice(const std::shared_ptr<Job>& job) {
     job->run_seconds += record.optimize_seconds;
     spdlog::info("lattice done {} generator={} score={:.6g} candidates={} {:.3f} s", job->name,
                  choice->generator, choice->score, choice->candidates, record.optimize_seconds);
+    entry = Complete(job->name, std::move(record));
+  }
+  return Finish(job, status, std::move(entry));
+}
+
+Scheduler::SliceEnd Scheduler::NetSlice(const std::shared_ptr<Job>& job) {
+  const storage::SetKey& key = job->key;
+  // As for lattices: the canonical key's exact angles; swapping and
+  // mirroring a centred net gives a centred net.
+  std::vector<double> dirs = {Phi1Degrees(key.dirs)};
+  if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
+  AlignedNetOptions net;
+  net.window_deg = kNetWindowDeg;
+  metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
+  spdlog::info("net start {}", job->name);
+  const auto t0 = Clock::now();
+  // The seed is the realization number itself (server/construction.h).
+  auto made = AlignedNet(key.n, dirs, key.realization, net);
+  Status status;
+  std::shared_ptr<const CanonicalEntry> entry;
+  if (!made.ok()) {
+    metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
+    spdlog::error("net failed {}: {}", job->name, made.status().message());
+    status = Status::Internal("net construction failed: " + made.status().message());
+  } else {
+    storage::SetRecord record;
+    record.key = key;
+    record.points = std::move(made->points);
+    record.iterations = made->sweeps;
+    record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    record.engine = "net";
+    job->run_seconds += record.optimize_seconds;
+    spdlog::info("net done {} objective {:.4g} -> {:.4g} flips={} sweeps={} {:.3f} s", job->name,
+                 made->start_objective, made->objective, made->flips, made->sweeps, record.optimize_seconds);
     entry = Complete(job->name, std::move(record));
   }
   return Finish(job, status, std::move(entry));

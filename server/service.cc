@@ -117,6 +117,7 @@ StatusOr<storage::SetKey> AlignSetService::KeyOf(const v1::AlignedSetRequest& re
   if (Status r = ValidateRealization(req.realization()); !r.ok()) return r;
   auto construction = ParseConstruction(req.construction());
   if (!construction.ok()) return construction.status();
+  if (Status s = ValidateConstructionSize(*construction, req.n()); !s.ok()) return s;
   return scheduler_->KeyFor(req.n(), canon.key, req.realization(), *construction);
 }
 
@@ -144,11 +145,13 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   md->set_not_stored(!entry.stored());
   const Construction construction = ConstructionOfProfile(key.profile);
   md->set_construction(ConstructionName(construction));
-  if (construction == Construction::kLattice) {
-    // No optimization parameters: the lattice's seed is its realization.
+  if (construction != Construction::kOptimized) {
+    // No optimization parameters: a lattice's or a net's seed is its
+    // realization.
     v1::OptimizationParameters* p = md->mutable_parameters();
     p->set_seed(key.realization);
-    p->set_algorithm_version(kLatticeAlgorithmVersion);
+    p->set_algorithm_version(construction == Construction::kLattice ? kLatticeAlgorithmVersion
+                                                                    : kNetAlgorithmVersion);
     return;
   }
   const FrequencyParams fp = DefaultFrequencyParams(key.n);

@@ -102,6 +102,9 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   if (Status s = ValidateRealizationCount(req->realizations()); !s.ok()) return Invalid(s, "Precompute");
   auto construction = ParseConstruction(req->construction());
   if (!construction.ok()) return Invalid(construction.status(), "Precompute");
+  for (uint32_t n : req->n()) {
+    if (Status s = ValidateConstructionSize(*construction, n); !s.ok()) return Invalid(s, "Precompute");
+  }
   const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
   // The items are enumerated as they are reached, not listed up front: a
   // request may name 64 N x 4141 keys x 64 realizations. Work order: N

@@ -206,7 +206,7 @@ TEST(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {
   auto stub = OwnStub(server.address());
   auto names_the_known = [](const std::string& message) {
     return message.find("'optimized'") != std::string::npos &&
-           message.find("'lattice'") != std::string::npos;
+           message.find("'lattice'") != std::string::npos && message.find("'net'") != std::string::npos;
   };
   v1::AlignedSetRequest bad = SetRequest(256, {30.0});
   bad.set_construction("sobol");
@@ -460,6 +460,69 @@ TEST(Constructions, CliGetAndPrecomputeTakeConstruction) {
   auto bad = RunCommand(cli + "get" + at + " --n 128 --dir 30 --construction sobol --out " + out);
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
   EXPECT_NE(bad.output.find("lattice"), std::string::npos) << bad.output;
+}
+
+// Nets: the served set is a (0,m,2)-net at every power of two (every
+// elementary interval counted), its own profile, a hit the second time with
+// the same bytes, the mirrored direction its aligned image; an N that is not
+// a power of two is INVALID_ARGUMENT and the server keeps serving.
+bool IsNetAtEveryPowerOfTwo(const PointSet& p, std::string* why) {
+  for (uint32_t size = 1; size <= p.size(); size *= 2) {
+    int j = 0;
+    while ((1u << j) < size) ++j;
+    for (int k = 0; k <= j; ++k) {
+      std::vector<int> count(size, 0);
+      for (uint32_t i = 0; i < size; ++i) {
+        const uint32_t a = std::min<uint32_t>((1u << k) - 1, static_cast<uint32_t>(p[i].x * (1u << k)));
+        const uint32_t b = std::min<uint32_t>((1u << (j - k)) - 1, static_cast<uint32_t>(p[i].y * (1u << (j - k))));
+        if (++count[(a << (j - k)) | b] > 1) {
+          *why = std::to_string(size) + " points: two in an interval 2^-" + std::to_string(k) + " x 2^-" +
+                 std::to_string(j - k);
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
+  TempDir dir;
+  ServerProcess server(dir.path(), kFlags);
+  ASSERT_EQ(server.error(), "");
+  auto client = ConnectTo(server);
+  const AlignedSet first = MustGet(*client, 256, 30.0, "net");
+  EXPECT_EQ(first.info.construction, "net");
+  EXPECT_EQ(first.info.engine, "net");
+  EXPECT_EQ(first.info.profile, "net-v1-w1");
+  EXPECT_FALSE(first.info.from_cache);
+  std::string why;
+  EXPECT_TRUE(IsNetAtEveryPowerOfTwo(first.points, &why)) << why;
+  const AlignedSet again = MustGet(*client, 256, 30.0, "net");
+  EXPECT_TRUE(again.info.from_cache);
+  ASSERT_EQ(again.points.size(), first.points.size());
+  for (size_t i = 0; i < first.points.size(); ++i) {
+    ASSERT_EQ(again.points[i].x, first.points[i].x);
+    ASSERT_EQ(again.points[i].y, first.points[i].y);
+  }
+  // 150 degrees is 30 mirrored (x -> 1 - x): the same canonical net.
+  const AlignedSet mirrored = MustGet(*client, 256, 150.0, "net");
+  EXPECT_TRUE(mirrored.info.from_cache);
+  EXPECT_TRUE(IsNetAtEveryPowerOfTwo(mirrored.points, &why)) << why;
+  // An optimized request for the same key is not answered with the net.
+  const AlignedSet optimized = MustGet(*client, 256, 30.0, "");
+  EXPECT_EQ(optimized.info.construction, "optimized");
+  EXPECT_FALSE(optimized.info.from_cache);
+
+  alignset::SetRequest bad;
+  bad.n = 100;
+  bad.directions_deg = {30.0};
+  bad.construction = "net";
+  auto refused = client->GetAlignedSet(bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), Status::Code::kInvalidArgument);
+  EXPECT_NE(refused.status().message().find("power of two"), std::string::npos) << refused.status().message();
+  EXPECT_EQ(MustGet(*client, 64, 45.0, "net").points.size(), 64u);  // still serving
 }
 
 }  // namespace

@@ -120,6 +120,20 @@ class ServerTest(unittest.TestCase):
         self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
         self.assertIn("'lattice'", e.exception.message)
 
+    def test_net_construction(self):
+        s = self.client.get_set(64, 30, construction="net")
+        self.assertEqual(s.metadata.construction, "net")
+        self.assertEqual(s.metadata.key.profile, "net-v1-w1")
+        # A (0,6,2)-net: every elementary interval of area 1/64 holds one point.
+        for k in range(7):
+            a = np.floor(s.points[:, 0] * 2 ** k).astype(int)
+            b = np.floor(s.points[:, 1] * 2 ** (6 - k)).astype(int)
+            self.assertEqual(len(set(zip(a, b))), 64)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(100, 30, construction="net")
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+        self.assertIn("power of two", e.exception.message)
+
     def test_baseline_samples(self):
         a = self.client.samples("owen-sobol", 64, seed=3)
         self.assertEqual(a.shape, (64, 2))

@@ -16,12 +16,14 @@ TEST(Construction, NamesParseAndUnknownOnesListTheKnown) {
   EXPECT_EQ(ParseConstruction("").value(), Construction::kOptimized);
   EXPECT_EQ(ParseConstruction("optimized").value(), Construction::kOptimized);
   EXPECT_EQ(ParseConstruction("lattice").value(), Construction::kLattice);
-  for (const char* bad : {"Lattice", "sobol", " lattice", "optimised"}) {
+  EXPECT_EQ(ParseConstruction("net").value(), Construction::kNet);
+  for (const char* bad : {"Lattice", "sobol", " lattice", "optimised", "nets"}) {
     auto c = ParseConstruction(bad);
     ASSERT_FALSE(c.ok()) << bad;
     EXPECT_EQ(c.status().code(), Status::Code::kInvalidArgument);
     EXPECT_NE(c.status().message().find("'optimized'"), std::string::npos) << c.status().message();
     EXPECT_NE(c.status().message().find("'lattice'"), std::string::npos) << c.status().message();
+    EXPECT_NE(c.status().message().find("'net'"), std::string::npos) << c.status().message();
   }
   // A client's name is escaped and cut, never echoed raw.
   auto forged = ParseConstruction("x\nforged" + std::string(1000, 'a'));
@@ -30,6 +32,16 @@ TEST(Construction, NamesParseAndUnknownOnesListTheKnown) {
   EXPECT_LT(forged.status().message().size(), 300u);
   EXPECT_STREQ(ConstructionName(Construction::kLattice), "lattice");
   EXPECT_STREQ(ConstructionName(Construction::kOptimized), "optimized");
+  EXPECT_STREQ(ConstructionName(Construction::kNet), "net");
+  // A net needs N a power of two; the others take any N.
+  EXPECT_TRUE(ValidateConstructionSize(Construction::kNet, 1024).ok());
+  for (uint32_t n : {100u, 8u, 131072u}) {
+    EXPECT_EQ(ValidateConstructionSize(Construction::kNet, n).code(), Status::Code::kInvalidArgument) << n;
+  }
+  EXPECT_TRUE(ValidateConstructionSize(Construction::kLattice, 100).ok());
+  EXPECT_EQ(ConstructionOfProfile(kNetProfile), Construction::kNet);
+  storage::SetKey key{1024, {1, 30, 30}, kNetProfile, 0};
+  EXPECT_TRUE(storage::ValidateKey(key).ok());
 }
 
 TEST(Construction, TheLatticeProfileIsAValidKeyProfileOfItsOwn) {

@@ -84,9 +84,10 @@ struct SetInfo {
   double optimize_seconds = 0.0;
   int iterations = 0;
   std::string engine;
-  // "optimized" or "lattice" (SetRequest::construction). A lattice has
-  // engine "lattice", iterations and losses 0, no optimization parameters,
-  // seed = its realization, algorithm_version the lattice construction's.
+  // "optimized", "lattice" or "net" (SetRequest::construction). A lattice
+  // has engine "lattice", iterations and losses 0, no optimization
+  // parameters, seed = its realization, algorithm_version the lattice
+  // construction's; a net likewise with engine "net".
   std::string construction = "optimized";
 };
 
@@ -110,8 +111,8 @@ struct SetRequest {
   // keys), 4 quarter degrees (181 keys). Two directions: whole degrees.
   uint32_t steps_per_degree = 0;
   // How the set is made: "" or "optimized" (the default, the optimized
-  // sets), or "lattice" (an aligned rank-1 lattice, cached apart from the
-  // optimized sets). Another name: INVALID_ARGUMENT from the server. A server
+  // sets), "lattice" (an aligned rank-1 lattice) or "net" (an aligned
+  // (0,m,2)-net, N a power of two), each cached apart from the others. Another name: INVALID_ARGUMENT from the server. A server
   // too old to know constructions would answer with an optimized set; the
   // client then fails the call with FAILED_PRECONDITION instead.
   std::string construction = "";

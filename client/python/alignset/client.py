@@ -51,7 +51,7 @@ def _request(n, directions, realization=0, construction=""):
 
 def _checked(aligned, construction):
     # A server from before constructions ignores the field and answers with
-    # an optimized set: refuse it rather than pass it off as a lattice.
+    # an optimized set: refuse it rather than pass it off as a lattice or net.
     asked = construction or "optimized"
     got = aligned.metadata.construction or "optimized"
     if got != asked:
@@ -107,8 +107,9 @@ class Client:
         """The aligned set for n points and one or two directions (degrees),
         with its metadata. `realization` (0..63) picks one of the key's
         independent sets; 0 is the key's first. `construction`: None or
-        "optimized" (the default, the optimized sets) or "lattice" (an aligned
-        rank-1 lattice, cached apart from them). Blocks while the server
+        "optimized" (the default, the optimized sets), "lattice" (an aligned
+        rank-1 lattice) or "net" (an aligned (0,m,2)-net, n a power of two),
+        each cached apart from the others. Blocks while the server
         optimizes a missing set."""
         request = _request(n, directions, realization, construction)
         return _checked(_aligned(self._call(self._stub.GetAlignedSet, request, timeout)),
