@@ -23,6 +23,7 @@ struct RenderOptions {
   int64_t size = 128;
   int64_t seed = 1;
   ServiceOptions service;
+  std::string reuse = "auto";
 };
 
 std::string SamplerHelp() {
@@ -60,6 +61,7 @@ int Run(RenderOptions& o) {
     o.request.orientation = render::LineOrientation::kRandom;
   }
   o.request.spp = static_cast<uint32_t>(o.spp);
+  o.request.reuse_prepass = *render::ParsePrepassReuse(o.reuse);  // checked by the option
   o.request.size = static_cast<int>(o.size);
   o.request.seed = static_cast<uint64_t>(o.seed);
   if (o.request.sampler == "aligned" || o.request.sampler == "aligned-exact") {
@@ -128,10 +130,11 @@ void AddRenderCommand(CLI::App& app) {
                  "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
                  "gridG, jgridG or samplesM, optionally cP (a confidence floor of P percent)")
       ->capture_default_str();
-  c->add_option("--reuse-prepass", o->request.reuse_prepass,
-                 "fold the pre-pass's samples into each pixel's estimate, without bias (needs a "
-                 "samplesM pre-pass)")
-      ->capture_default_str();
+  c->add_option("--reuse-prepass", o->reuse,
+                 "fold the pre-pass's samples into each pixel's estimate, without bias: auto (when\n"
+                 "the pre-pass allows it: samplesM, edgesM), on (refuse a pre-pass that does not), off")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "on", "off"}));
   c->add_option("--lattice-window", o->request.lattice_window_deg,
                  "aligned-lattice*: degrees either side of a pixel's θ its lattice is chosen for")
       ->capture_default_str()

@@ -58,12 +58,13 @@ StatusOr<RenderSummary> RunRender(
   // The pre-pass only for the samplers that read the estimated θ (it costs
   // about 3 ms per pixel with grid16).
   const bool uses_estimate = ReadsEstimatedDirections(c);
-  if (uses_estimate && r.reuse_prepass && !prepass->Reusable()) {
+  if (uses_estimate && r.reuse_prepass == PrepassReuse::kOn && !prepass->Reusable()) {
     return Status::InvalidArgument(
         "pre-pass " + prepass->Name() + " cannot be reused in the estimate (a grid's mean is " +
-        "biased or far noisier than the sampler's own); reuse needs samplesM, or turn reuse off");
+        "biased or far noisier than the sampler's own); reuse needs samplesM or edgesM, or turn "
+        "reuse off");
   }
-  c.reuse_prepass = uses_estimate && r.reuse_prepass;
+  c.reuse_prepass = uses_estimate && r.reuse_prepass != PrepassReuse::kOff && prepass->Reusable();
   const std::vector<PixelDirection> estimated =
       uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
                     : std::vector<PixelDirection>(scene->size());

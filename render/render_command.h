@@ -25,9 +25,9 @@ struct RenderRequest {
   double segment_length = 0.5;
   int threads = 2;
   std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
-  // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h);
-  // needs a randomized pre-pass.
-  bool reuse_prepass = kDefaultReusePrepass;
+  // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h):
+  // auto when the pre-pass allows it; on refuses one that does not.
+  PrepassReuse reuse_prepass = PrepassReuse::kAuto;
   double lattice_window_deg = 1.0;  // aligned-lattice*: the window of normals a generator is chosen for
   ConnectOptions server;       // aligned, aligned-exact only
 };

@@ -67,6 +67,13 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   return p;
 }
 
+StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {
+  if (text == "auto") return PrepassReuse::kAuto;
+  if (text == "on") return PrepassReuse::kOn;
+  if (text == "off") return PrepassReuse::kOff;
+  return Status::InvalidArgument("pre-pass reuse must be auto, on or off, got '" + text + "'");
+}
+
 namespace {
 
 PixelDirection FromEstimate(const DirectionEstimate& e, int min_confidence_pct) {

@@ -5,7 +5,7 @@
 //
 //   render_bench --server ADDR --out DIR [--size 128] [--n 16,32,...,4096]
 //                [--image-n 256,1024,4096] [--scenes antialias,shadow]
-//                [--samplers a,b,...] [--threads 2] [--seed 1] [--prepass grid16c50]
+//                [--samplers a,b,...] [--threads 2] [--seed 1] [--prepass edges256]
 //                [--alt-prepass samples256]
 //                [--compare-prepass grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024]
 //                [--line-rates 1|0] [--two-max-n 65536]

@@ -60,22 +60,26 @@ TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
 
 TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   // A sampler that estimates the pixel's direction pays for its pre-pass
-  // (grid16: 256 evaluations); one that does not reports N alone.
+  // (the default edges256: 256 evaluations, reused); one that does not
+  // reports N alone.
   CliRun r = RunCli("render --size 12 --sampler aligned-lattice -n 64 -o " + dir_ + "/l.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
-  EXPECT_NE(Said(r).find("samples per pixel: 64 + 256 pre-pass = 320\n"), std::string::npos) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 256 pre-pass (reused in the estimate) = 320\n"),
+            std::string::npos)
+      << Said(r);
   r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid8 -o " + dir_ + "/l8.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass = 128\n"), std::string::npos) << Said(r);
   // Reused, the pre-pass is still counted, and said to be in the estimate;
   // a grid pre-pass cannot be reused (a one-line usage error).
-  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass samples64 --reuse-prepass true -o " +
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass samples64 --reuse-prepass on -o " +
              dir_ + "/lr.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass (reused in the estimate) = 128\n"),
             std::string::npos)
       << Said(r);
-  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --reuse-prepass true -o " + dir_ + "/lg.npy");
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid16 --reuse-prepass on -o " + dir_ +
+             "/lg.npy");
   EXPECT_EQ(r.exit_code, 2) << Said(r);
   EXPECT_NE(Said(r).find("cannot be reused"), std::string::npos) << Said(r);
   const std::string refused = Said(r);
