@@ -51,6 +51,17 @@ struct OptimizeOptions {
 int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
 int Failure(const Status& s) { return ReportError("optimize", s, kExitFailure); }
 
+// "30,120": the directions as given, for reports and file comments.
+std::string DirectionsText(const std::vector<double>& dirs) {
+  std::string text;
+  for (double d : dirs) {
+    char one[32];
+    std::snprintf(one, sizeof(one), "%s%g", text.empty() ? "" : ",", d);
+    text += one;
+  }
+  return text;
+}
+
 // --construction lattice: the generator is searched once; -m gives its
 // realizations (seeds S, S+1, ...: other whole-cell shifts of one lattice).
 int RunLattice(const OptimizeOptions& o) {
@@ -68,12 +79,7 @@ int RunLattice(const OptimizeOptions& o) {
   if (!choice.ok()) return Usage(choice.status());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::string dir_text;
-  for (double d : o.dirs) {
-    char one[32];
-    std::snprintf(one, sizeof(one), "%s%g", dir_text.empty() ? "" : ",", d);
-    dir_text += one;
-  }
+  const std::string dir_text = DirectionsText(o.dirs);
   const int sets = o.sets.value_or(1);
   std::vector<PointSet> points;
   std::string comment;
@@ -112,12 +118,7 @@ int RunNet(const OptimizeOptions& o) {
       return Failure(s);
     }
   }
-  std::string dir_text;
-  for (double d : o.dirs) {
-    char one[32];
-    std::snprintf(one, sizeof(one), "%s%g", dir_text.empty() ? "" : ",", d);
-    dir_text += one;
-  }
+  const std::string dir_text = DirectionsText(o.dirs);
   const auto t0 = std::chrono::steady_clock::now();
   const int sets = o.sets.value_or(1);
   std::vector<PointSet> points;

@@ -507,8 +507,9 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
       return SliceEnd::kDone;
     }
     if (options_.fill) return FillSlice(job);
-    if (ConstructionOfProfile(key.profile) == Construction::kLattice) return LatticeSlice(job);
-    if (ConstructionOfProfile(key.profile) == Construction::kNet) return NetSlice(job);
+    if (const Construction c = ConstructionOfProfile(key.profile); c != Construction::kOptimized) {
+      return ConstructedSlice(job, c);
+    }
     if (job->chain.empty()) PlanLineage(job.get());
     const storage::SetKey& target = job->chain[job->chain_next];
     OptimizationProblem problem;
@@ -719,73 +720,58 @@ Scheduler::SliceEnd Scheduler::FillSlice(const std::shared_ptr<Job>& job) {
   return Finish(job, status, std::move(entry));
 }
 
-Scheduler::SliceEnd Scheduler::LatticeSlice(const std::shared_ptr<Job>& job) {
+Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job, Construction construction) {
   const storage::SetKey& key = job->key;
+  const char* name = ConstructionName(construction);
   // The canonical key's exact angles (30.25 on the quarter-degree grid); the
-  // served set is this one aligned by swap / mirror, which is the lattice
-  // of the swapped / mirrored generator and integrates the swapped /
-  // mirrored edges exactly as well (the search's family of edges and its
-  // corner term are symmetric under the square's group).
+  // served set is this one aligned by swap / mirror: for a lattice the
+  // lattice of the swapped / mirrored generator, for a centred net again a
+  // centred net, each integrating the swapped / mirrored edges exactly as
+  // well as the canonical set integrates its own.
   std::vector<double> dirs = {Phi1Degrees(key.dirs)};
   if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
-  AlignedLatticeOptions lattice;
-  lattice.window_deg = kLatticeWindowDeg;
-  lattice.threads = std::max(1, options_.threads_per_worker);
   metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-  spdlog::info("lattice start {} threads={}", job->name, lattice.threads);
+  spdlog::info("{} start {}", name, job->name);
   const auto t0 = Clock::now();
-  auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
-  Status status;
-  std::shared_ptr<const CanonicalEntry> entry;
-  if (!choice.ok()) {
-    metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
-    spdlog::error("lattice failed {}: {}", job->name, choice.status().message());
-    status = Status::Internal("lattice construction failed: " + choice.status().message());
-  } else {
-    storage::SetRecord record;
-    record.key = key;
-    // The seed is the realization number itself (server/construction.h).
-    record.points = Rank1LatticePoints(key.n, choice->generator, key.realization);
-    record.iterations = 0;
-    record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    record.engine = "lattice";
-    job->run_seconds += record.optimize_seconds;
-    spdlog::info("lattice done {} generator={} score={:.6g} candidates={} {:.3f} s", job->name,
-                 choice->generator, choice->score, choice->candidates, record.optimize_seconds);
-    entry = Complete(job->name, std::move(record));
-  }
-  return Finish(job, status, std::move(entry));
-}
-
-Scheduler::SliceEnd Scheduler::NetSlice(const std::shared_ptr<Job>& job) {
-  const storage::SetKey& key = job->key;
-  // As for lattices: the canonical key's exact angles; swapping and
-  // mirroring a centred net gives a centred net.
-  std::vector<double> dirs = {Phi1Degrees(key.dirs)};
-  if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
-  AlignedNetOptions net;
-  net.window_deg = kNetWindowDeg;
-  metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-  spdlog::info("net start {}", job->name);
-  const auto t0 = Clock::now();
+  storage::SetRecord record;
+  record.key = key;
+  record.engine = name;
+  std::string detail;
   // The seed is the realization number itself (server/construction.h).
-  auto made = AlignedNet(key.n, dirs, key.realization, net);
+  Status made;
+  if (construction == Construction::kLattice) {
+    AlignedLatticeOptions lattice;
+    lattice.window_deg = kLatticeWindowDeg;
+    lattice.threads = std::max(1, options_.threads_per_worker);
+    auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
+    made = choice.status();
+    if (choice.ok()) {
+      record.points = Rank1LatticePoints(key.n, choice->generator, key.realization);
+      detail = fmt::format("generator={} score={:.6g} candidates={}", choice->generator, choice->score,
+                           choice->candidates);
+    }
+  } else {
+    AlignedNetOptions net;
+    net.window_deg = kNetWindowDeg;
+    auto result = AlignedNet(key.n, dirs, key.realization, net);
+    made = result.status();
+    if (result.ok()) {
+      record.points = std::move(result->points);
+      record.iterations = result->sweeps;
+      detail = fmt::format("objective {:.4g} -> {:.4g} flips={} sweeps={}", result->start_objective,
+                           result->objective, result->flips, result->sweeps);
+    }
+  }
   Status status;
   std::shared_ptr<const CanonicalEntry> entry;
   if (!made.ok()) {
     metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
-    spdlog::error("net failed {}: {}", job->name, made.status().message());
-    status = Status::Internal("net construction failed: " + made.status().message());
+    spdlog::error("{} failed {}: {}", name, job->name, made.message());
+    status = Status::Internal(std::string(name) + " construction failed: " + made.message());
   } else {
-    storage::SetRecord record;
-    record.key = key;
-    record.points = std::move(made->points);
-    record.iterations = made->sweeps;
     record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    record.engine = "net";
     job->run_seconds += record.optimize_seconds;
-    spdlog::info("net done {} objective {:.4g} -> {:.4g} flips={} sweeps={} {:.3f} s", job->name,
-                 made->start_objective, made->objective, made->flips, made->sweeps, record.optimize_seconds);
+    spdlog::info("{} done {} {} {:.3f} s", name, job->name, detail, record.optimize_seconds);
     entry = Complete(job->name, std::move(record));
   }
   return Finish(job, status, std::move(entry));

@@ -209,8 +209,8 @@ class Scheduler {
   SliceEnd FillSlice(const std::shared_ptr<Job>& job);
   // A lattice key's job: the generator search and the points, in one slice
   // (not paused, not stopped: seconds at most), stored like an optimized set.
-  SliceEnd LatticeSlice(const std::shared_ptr<Job>& job);
-  SliceEnd NetSlice(const std::shared_ptr<Job>& job);
+  // A lattice or net key: constructed in one go (not paused, not cancelled).
+  SliceEnd ConstructedSlice(const std::shared_ptr<Job>& job, Construction construction);
   // Sets job->chain: the job's key and the ancestors that must be optimized
   // before it (none in memory or in the cache), root-most first, and the
   // warm start of the first when its parent is held.
