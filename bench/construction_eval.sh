@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Constructions side by side, judged by bench/construction_eval.py (NumPy,
 # no code shared with the core): Owen-Sobol (16 scrambles), the aligned
-# lattice (4 realizations) and the optimized set (one seed), on edges at
+# lattice (4 realizations), the aligned net (2 realizations) and the
+# optimized set (one seed), on edges at
 # theta + 0 / 0.5 / 1 / 2 degrees, 1024 seeded Gaussians and two ramps,
 # with and without Cranley-Patterson shifts.
 #
@@ -28,9 +29,13 @@ for n in ${N//,/ }; do
     for s in 1 2 3 4; do
       "$CLI" optimize -n "$n" --dir "$t" --construction lattice -s "$s" -o "$WORK/lat_${n}_${t}_$s.txt" >/dev/null
     done
+    for s in 1 2; do
+      [ -f "$WORK/net_${n}_${t}_$s.txt" ] || "$CLI" optimize -n "$n" --dir "$t" --construction net -s "$s" -o "$WORK/net_${n}_${t}_$s.txt" >/dev/null
+    done
     [ -f "$WORK/opt_${n}_${t}.txt" ] || "$CLI" optimize -n "$n" --dir "$t" -s 1 -o "$WORK/opt_${n}_${t}.txt" >/dev/null 2>&1
     /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
       --label owen-sobol "$WORK"/os_${n}_*.txt --label lattice "$WORK"/lat_${n}_${t}_*.txt \
+      --label net "$WORK"/net_${n}_${t}_*.txt \
       --label optimized "$WORK/opt_${n}_${t}.txt" --out "$OUT.part" | tail -n +2
   done
   for pair in ${PAIRS//,/ }; do
@@ -38,10 +43,12 @@ for n in ${N//,/ }; do
     for s in 1 2 3 4; do
       "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction lattice -s "$s" -o "$WORK/lat2_${n}_${a}_${b}_$s.txt" >/dev/null
     done
+    [ -f "$WORK/net2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction net -s 1 -o "$WORK/net2_${n}_${a}_${b}.txt" >/dev/null
     [ -f "$WORK/opt2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" -s 1 -o "$WORK/opt2_${n}_${a}_${b}.txt" >/dev/null 2>&1
     for t in "$a" "$b"; do
       /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
         --label owen-sobol "$WORK"/os_${n}_*.txt --label "lattice-2dir($a,$b)" "$WORK"/lat2_${n}_${a}_${b}_*.txt \
+        --label "net-2dir($a,$b)" "$WORK/net2_${n}_${a}_${b}.txt" \
         --label "optimized-2dir($a,$b)" "$WORK/opt2_${n}_${a}_${b}.txt" --out "$OUT.part" | tail -n +2
     done
   done

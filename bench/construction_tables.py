@@ -48,6 +48,29 @@ def main(argv):
         out.append("")
     out.append("✗: the lattice is worse than Owen-Sobol there.")
     out.append("")
+    net_path = os.path.join(res, "family_net.tsv")
+    if os.path.exists(net_path):
+        net = family(net_path)
+        out.append("### Variance / Owen-Sobol's on the family: aligned net | aligned lattice")
+        out.append("")
+        for n in sorted({k[1] for k in net}):
+            out.append("N = %d" % n)
+            out.append("")
+            out.append("| member | " + " | ".join("θ = %g°" % t for t in thetas) + " |")
+            out.append("|---|" + "---|" * len(thetas))
+            for m in members:
+                cells = []
+                for t in thetas:
+                    a, b = net.get((t, n, m)), lat.get((t, n, m))
+                    if a is None:
+                        cells.append("–")
+                        continue
+                    fmt = lambda x: ("%.3g" % x) if x >= 0.001 else ("%.0e" % x if x > 0 else "0")
+                    cells.append("%s \\| %s%s" % (fmt(a), fmt(b) if b is not None else "–", " ✗" if a > 1 else ""))
+                out.append("| %s | %s |" % (m, " | ".join(cells)))
+            out.append("")
+        out.append("✗: the net is worse than Owen-Sobol there.")
+        out.append("")
     ev = os.path.join(res, "construction_eval.tsv")
     if os.path.exists(ev):
         rows = list(csv.DictReader(open(ev), delimiter="\t"))
