@@ -46,7 +46,7 @@ StatusOr<RenderSummary> RunRender(
     return Status::InvalidArgument("--spp must be in [1, 65536], got " + std::to_string(r.spp));
   }
   const std::vector<PixelDirection> exact = GeometryDirections(*scene);
-  auto prepass = ParsePrepass(r.prepass);
+  auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp) : r.prepass);
   if (!prepass.ok()) return prepass.status();
   const std::unique_ptr<DirectionEstimator> estimator = MakeSpectralEstimator(*prepass);
   SamplerConfig c;

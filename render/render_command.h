@@ -24,7 +24,9 @@ struct RenderRequest {
   LineOrientation orientation = LineOrientation::kNormal;  // line, segment
   double segment_length = 0.5;
   int threads = 2;
-  std::string prepass = kDefaultPrepass;  // the direction estimator's pre-pass (spectral_estimator.h)
+  // The direction estimator's pre-pass (spectral_estimator.h); "auto" picks
+  // one by N (AutoPrepass).
+  std::string prepass = kAutoPrepass;
   // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h):
   // auto when the pre-pass allows it; on refuses one that does not.
   PrepassReuse reuse_prepass = PrepassReuse::kAuto;

@@ -1,5 +1,6 @@
 #include "render/spectral_estimator.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 
@@ -65,6 +66,10 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   }
   if (p.count < lo || p.count > hi) return refuse();
   return p;
+}
+
+std::string AutoPrepass(uint32_t n) {
+  return "edges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256));
 }
 
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {

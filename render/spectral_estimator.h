@@ -65,6 +65,14 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec);
 // "Every sample counted"), and its samples are reusable. (Its confidence is
 // the inliers' share, already at least one half, so a c50 floor is a no-op.)
 inline constexpr const char* kDefaultPrepass = "edges256";
+// `alignset render`'s default, "auto": the edge-line fit on a quarter of the
+// sampler's N, at least 16 and at most 256 samples (edges64 at N = 256,
+// edges256 from N = 1024 on). Measured on the three scene seeds: at N = 256,
+// edges64 is 1.7-2.1x below Owen-Sobol at the same total (320) where
+// edges256 is 1.2-1.4x (at 512); at 1024, edges256 is ahead (2.5-2.8x
+// against 2.2-2.7x) (docs/rendering.md, "Every sample counted").
+inline constexpr const char* kAutoPrepass = "auto";
+std::string AutoPrepass(uint32_t n);
 // Whether a pre-pass is folded into the pixel's estimate
 // (render/prepass_reuse.h): kAuto, the default, whenever the pre-pass is
 // reusable (the default one is); kOn refuses a pre-pass that is not.

@@ -60,11 +60,16 @@ TEST_F(RenderCli, ASamplersImageIsTheLibrarysRender) {
 
 TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   // A sampler that estimates the pixel's direction pays for its pre-pass
-  // (the default edges256: 256 evaluations, reused); one that does not
-  // reports N alone.
+  // (the default, auto: edges on a quarter of N, here 16 at N = 64 and 256
+  // at N = 2048, reused); one that does not reports N alone.
   CliRun r = RunCli("render --size 12 --sampler aligned-lattice -n 64 -o " + dir_ + "/l.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
-  EXPECT_NE(Said(r).find("samples per pixel: 64 + 256 pre-pass (reused in the estimate) = 320\n"),
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 16 pre-pass (reused in the estimate) = 80\n"),
+            std::string::npos)
+      << Said(r);
+  r = RunCli("render --size 4 --sampler pmj02bn-sheared -n 2048 -o " + dir_ + "/p.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 2048 + 256 pre-pass (reused in the estimate) = 2304\n"),
             std::string::npos)
       << Said(r);
   r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid8 -o " + dir_ + "/l8.npy");

@@ -56,6 +56,20 @@ std::vector<size_t> CleanEdgePixels(const Scene& s, const std::vector<PixelDirec
   return out;
 }
 
+TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256) {
+  EXPECT_EQ(AutoPrepass(16), "edges16");
+  EXPECT_EQ(AutoPrepass(64), "edges16");
+  EXPECT_EQ(AutoPrepass(256), "edges64");
+  EXPECT_EQ(AutoPrepass(1000), "edges250");
+  EXPECT_EQ(AutoPrepass(1024), "edges256");
+  EXPECT_EQ(AutoPrepass(65536), "edges256");
+  for (uint32_t n : {1u, 16u, 256u, 4096u}) {
+    auto p = ParsePrepass(AutoPrepass(n));
+    ASSERT_TRUE(p.ok()) << n;
+    EXPECT_TRUE(p->Reusable());
+  }
+}
+
 // Measured on these 60 pixels per scene (seed 1), found / median error:
 // grid16 55 / 1.7 (antialias) and 54 / 2.6 degrees (shadow); the record's
 // confidence floor, grid16c50, 43 / 1.4 and 43 / 1.7; samples256, whose
