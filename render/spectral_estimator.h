@@ -67,10 +67,13 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec);
 inline constexpr const char* kDefaultPrepass = "edges256";
 // `alignset render`'s default, "auto": the edge-line fit on a quarter of the
 // sampler's N, at least 16 and at most 256 samples (edges64 at N = 256,
-// edges256 from N = 1024 on). Measured on the three scene seeds: at N = 256,
-// edges64 is 1.7-2.1x below Owen-Sobol at the same total (320) where
-// edges256 is 1.2-1.4x (at 512); at 1024, edges256 is ahead (2.5-2.8x
-// against 2.2-2.7x) (docs/rendering.md, "Every sample counted").
+// edges256 from N = 1024 on). Measured on the three scene seeds with
+// aligned lattices: at N = 256, edges64 is 1.7-2.1x below Owen-Sobol at the
+// same total (320) where edges256 is 1.2-1.4x (at 512); against the best
+// other sampler at that total edges256 is the safer one (1.20-1.38x on
+// every seed; edges64 1.05-1.21x, one seed 0.72x, the plain rank-1 lattice
+// being good at 320). At 1024 edges256 is ahead on both counts
+// (docs/rendering.md, "Every sample counted").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n);
 // Whether a pre-pass is folded into the pixel's estimate
