@@ -2,13 +2,14 @@
 # The rendered comparison over several scene seeds, with every sample counted:
 # renders both scenes of each seed with the samplers below at N = 256, 1024
 # and 4096 (render_bench against its own loopback server), then renders the
-# samplers that need no pre-pass again at N + 256 (the pre-pass of the
-# estimated-direction samplers is 256 evaluations per pixel: grid16), and
-# writes one table (bench/render/seed_table.py).
+# samplers that need no pre-pass again at N + P (P: the evaluations of the
+# estimated-direction samplers' pre-pass, read from render_bench's
+# estimator.csv; 256 for the default edges256), and writes one table
+# (bench/render/seed_table.py).
 #
 #   bash bench/render/seeds.sh                       # seeds 1 2 3
 #   SEEDS="4 5" N=1024 bash bench/render/seeds.sh    # others
-#   PREPASS=grid8c50 N=256 SAMPLERS=owen-sobol,aligned-lattice bash bench/render/seeds.sh
+#   PREPASS=edges64 N=256 SAMPLERS=owen-sobol,aligned-lattice,aligned-lattice+reuse bash bench/render/seeds.sh
 #
 # Two-direction sets up to TWO_MAX_N (default 1024; the optimized sets at
 # 4096 take about 40 minutes per seed); the policy is the same for every
@@ -18,7 +19,7 @@ cd "$(dirname "$0")/../.."
 BUILD_DIR="${BUILD_DIR:-build}"
 SEEDS="${SEEDS:-1 2 3}"
 N="${N:-256,1024,4096}"
-SAMPLERS="${SAMPLERS:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1,aligned,aligned-exact,aligned-lattice,aligned-lattice-exact}"
+SAMPLERS="${SAMPLERS:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1,aligned,aligned+reuse,aligned-exact,aligned-lattice,aligned-lattice+reuse,aligned-lattice-exact}"
 COUNTED="${COUNTED:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1}"
 RAW="${RAW:-$BUILD_DIR/render-seeds}"
 OUT="${OUT:-bench/results/render_seeds.md}"
@@ -26,7 +27,7 @@ TWO_MAX_N="${TWO_MAX_N:-1024}"
 THREADS="${THREADS:-2}"
 # The direction estimator's pre-pass (render/spectral_estimator.h); what it
 # costs a pixel is read from the estimator.csv render_bench writes.
-PREPASS="${PREPASS:-grid16c50}"
+PREPASS="${PREPASS:-$(sed -n 's/.*kDefaultPrepass = "\(.*\)";/\1/p' render/spectral_estimator.h)}"
 
 cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
 mkdir -p "$BUILD_DIR/render-cache" "$RAW"
