@@ -29,7 +29,7 @@
 // samples on clean straight edges, against the rates of Singh, Miller and
 // Jarosz), and .npy images under
 // DIR/images.
-#include <sys/stat.h>
+#include <filesystem>
 
 #include <chrono>
 #include <cmath>
@@ -281,8 +281,14 @@ int Main(int argc, char** argv) {
     return 2;
   }
   const std::string out = a["out"];
-  ::mkdir(out.c_str(), 0755);
-  ::mkdir((out + "/images").c_str(), 0755);
+  // The whole path (a run under a new parent folder once lost its tables
+  // silently); a folder that cannot be made stops the run here.
+  std::error_code made;
+  std::filesystem::create_directories(out + "/images", made);
+  if (made) {
+    std::fprintf(stderr, "render_bench: cannot create %s/images: %s\n", out.c_str(), made.message().c_str());
+    return 1;
+  }
   const int size = std::atoi(a["size"].c_str()), threads = std::atoi(a["threads"].c_str());
   const uint64_t seed = std::strtoull(a["seed"].c_str(), nullptr, 10);
   std::vector<uint32_t> ns, image_ns;
