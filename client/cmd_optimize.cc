@@ -62,6 +62,21 @@ std::string DirectionsText(const std::vector<double>& dirs) {
   return text;
 }
 
+// Writes a lattice's or net's sets and the report that goes with them.
+int WriteConstructed(const OptimizeOptions& o, const std::vector<PointSet>& points, const std::string& comment,
+                     const std::string& dir_text, const std::string& construction, double seconds) {
+  const Status written = o.sets ? WritePointSets(o.out, points, comment)
+                                : WritePointFile(o.out, points[0], comment);
+  if (!written.ok()) return Failure(written);
+  FILE* report = ReportStreamFor(o.out);
+  std::fprintf(report, "N              %u\n", static_cast<uint32_t>(o.n));
+  std::fprintf(report, "directions     %s (deg, spectral = edge normal)\n", dir_text.c_str());
+  std::fprintf(report, "construction   %s\n", construction.c_str());
+  std::fprintf(report, "time           %.3f s\n", seconds);
+  std::fprintf(report, "wrote          %s\n", o.out.c_str());
+  return kExitOk;
+}
+
 // --construction lattice: the generator is searched once; -m gives its
 // realizations (seeds S, S+1, ...: other whole-cell shifts of one lattice).
 int RunLattice(const OptimizeOptions& o) {
@@ -94,17 +109,10 @@ int RunLattice(const OptimizeOptions& o) {
                   static_cast<unsigned long long>(o.seed + i));
     comment += line;
   }
-  const Status written = o.sets ? WritePointSets(o.out, points, comment)
-                                : WritePointFile(o.out, points[0], comment);
-  if (!written.ok()) return Failure(written);
-  FILE* report = ReportStreamFor(o.out);
-  std::fprintf(report, "N              %u\n", n);
-  std::fprintf(report, "directions     %s (deg, spectral = edge normal)\n", dir_text.c_str());
-  std::fprintf(report, "construction   aligned rank-1 lattice, generator %u (%u candidates, "
-               "window +-%g deg)\n", choice->generator, choice->candidates, o.window);
-  std::fprintf(report, "time           %.3f s\n", seconds);
-  std::fprintf(report, "wrote          %s\n", o.out.c_str());
-  return kExitOk;
+  char what[160];
+  std::snprintf(what, sizeof(what), "aligned rank-1 lattice, generator %u (%u candidates, window +-%g deg)",
+                choice->generator, choice->candidates, o.window);
+  return WriteConstructed(o, points, comment, dir_text, what, seconds);
 }
 
 // --construction net: -m gives realizations from the seeds S, S+1, ...,
@@ -137,17 +145,9 @@ int RunNet(const OptimizeOptions& o) {
     comment += line;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const Status written = o.sets ? WritePointSets(o.out, points, comment)
-                                : WritePointFile(o.out, points[0], comment);
-  if (!written.ok()) return Failure(written);
-  FILE* report = ReportStreamFor(o.out);
-  std::fprintf(report, "N              %u\n", n);
-  std::fprintf(report, "directions     %s (deg, spectral = edge normal)\n", dir_text.c_str());
-  std::fprintf(report, "construction   aligned (0,m,2)-net, %d flips chosen (window +-%g deg)\n", flips,
-               o.window);
-  std::fprintf(report, "time           %.3f s\n", seconds);
-  std::fprintf(report, "wrote          %s\n", o.out.c_str());
-  return kExitOk;
+  char what[160];
+  std::snprintf(what, sizeof(what), "aligned (0,m,2)-net, %d flips chosen (window +-%g deg)", flips, o.window);
+  return WriteConstructed(o, points, comment, dir_text, what, seconds);
 }
 
 int RunOptimize(const OptimizeOptions& o) {
