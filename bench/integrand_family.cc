@@ -136,9 +136,10 @@ bool ParseArgs(int argc, char** argv, Options* o) {
     } else if (a == "--construction") {
       o->construction = next();
       if (o->construction != "optimized" && o->construction != "lattice" &&
-          o->construction != "lattice-start" && o->construction != "warm" && o->construction != "net") {
+          o->construction != "lattice-start" && o->construction != "warm" && o->construction != "net" &&
+          o->construction != "net-start") {
         std::fprintf(stderr, "integrand_family: --construction is optimized, lattice, lattice-start, "
-                             "warm or net\n");
+                             "warm, net or net-start\n");
         std::exit(2);
       }
     } else if (a == "--warm-root") {
@@ -201,7 +202,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
-          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|warm]\n"
+          "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|net-start|warm]\n"
           "  [--warm-root DEG] [--warm-iterations I] [--warm-lr-scale X] [--warm-warmup F]\n"
           "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
           "  [--net-radius F] [--net-frequencies K] [--net-sweeps S] [--net-window DEG] [--net-smooth W]\n"
@@ -384,7 +385,8 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
     << fp.radius << ";tol=" << p.engine_tolerance << ";v=5"
-    << (o.construction == "lattice-start" ? ";start=lattice" : "");
+    << (o.construction == "lattice-start" ? ";start=lattice" : "")
+    << (o.construction == "net-start" ? ";start=net" : "");
   if (o.construction == "warm") {
     s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << o.warm_lr_scale << ","
       << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction;
@@ -482,6 +484,14 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
           o.warm_lr_scale * DefaultLearningRate(BuildFrequencySet(
                                 *problem.frequency_params, AnisotropyDirections(problem.directions)));
     }
+  }
+  if (o.construction == "net-start") {
+    auto start = AlignedNet(n, problem.directions, static_cast<uint64_t>(seed), o.net);
+    if (!start.ok()) {
+      std::fprintf(stderr, "integrand_family: %s\n", start.status().message().c_str());
+      std::exit(1);
+    }
+    problem.start = std::move(start->points);
   }
   if (o.construction == "lattice-start") {
     auto start = AlignedLattice(n, problem.directions, static_cast<uint64_t>(seed));
