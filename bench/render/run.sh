@@ -29,13 +29,9 @@ PREPASS="${PREPASS:-}"
 # edges gets the stronger edge's set. TWO_MAX_N=65536: every N.
 TWO_MAX_N="${TWO_MAX_N:-2048}"
 
-cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
-mkdir -p "$BUILD_DIR/render-cache" "$RAW"
-LOG="$BUILD_DIR/render-cache/server.log"
-. scripts/lib/loopback_server.sh
-trap stop_loopback_server EXIT
-start_loopback_server 30 "$LOG" "$BUILD_DIR/server/alignset-server" \
-  --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
+. bench/render/render_server.sh
+mkdir -p "$RAW"
+start_render_server
 echo "render: alignset-server on $ADDR (cache $BUILD_DIR/render-cache/cache.sqlite)"
 
 "$BUILD_DIR/bench/render/render_bench" --server "$ADDR" --out "$RAW" --n "$N" \

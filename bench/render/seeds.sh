@@ -27,15 +27,11 @@ TWO_MAX_N="${TWO_MAX_N:-1024}"
 THREADS="${THREADS:-2}"
 # The direction estimator's pre-pass (render/spectral_estimator.h); what it
 # costs a pixel is read from the estimator.csv render_bench writes.
-PREPASS="${PREPASS:-$(sed -n 's/.*kDefaultPrepass = "\(.*\)";/\1/p' render/spectral_estimator.h)}"
+. bench/render/render_server.sh
+PREPASS="${PREPASS:-$(default_prepass)}"
 
-cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
-mkdir -p "$BUILD_DIR/render-cache" "$RAW"
-LOG="$BUILD_DIR/render-cache/server.log"
-. scripts/lib/loopback_server.sh
-trap stop_loopback_server EXIT
-start_loopback_server 30 "$LOG" "$BUILD_DIR/server/alignset-server" \
-  --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
+mkdir -p "$RAW"
+start_render_server
 echo "seeds: alignset-server on $ADDR"
 
 for seed in $SEEDS; do

@@ -18,15 +18,11 @@ OUT="${OUT:-bench/results/render_error_split.md}"
 FIGURE="${FIGURE:-bench/results/render_error_split.png}"
 TWO_MAX_N="${TWO_MAX_N:-1024}"
 THREADS="${THREADS:-2}"
-PREPASS="${PREPASS:-$(sed -n 's/.*kDefaultPrepass = "\(.*\)";/\1/p' render/spectral_estimator.h)}"
+. bench/render/render_server.sh
+PREPASS="${PREPASS:-$(default_prepass)}"
 
-cmake --build "$BUILD_DIR" --target alignset-server render_bench >/dev/null
-mkdir -p "$BUILD_DIR/render-cache" "$RAW"
-LOG="$BUILD_DIR/render-cache/server.log"
-. scripts/lib/loopback_server.sh
-trap stop_loopback_server EXIT
-start_loopback_server 30 "$LOG" "$BUILD_DIR/server/alignset-server" \
-  --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
+mkdir -p "$RAW"
+start_render_server
 echo "split: alignset-server on $ADDR, pre-pass $PREPASS"
 for seed in $SEEDS; do
   "$BUILD_DIR/bench/render/render_bench" --server "$ADDR" --threads "$THREADS" --seed "$seed" \
