@@ -29,31 +29,13 @@ def main(argv):
     for k in lat:
         if k[2] not in members:
             members.append(k[2])
-    out = ["### Variance / Owen-Sobol's on the family: aligned lattice | optimized set", ""]
-    for n in ns:
-        out.append("N = %d" % n)
-        out.append("")
-        out.append("| member | " + " | ".join("θ = %g°" % t for t in thetas) + " |")
-        out.append("|---|" + "---|" * len(thetas))
-        for m in members:
-            cells = []
-            for t in thetas:
-                a, b = lat.get((t, n, m)), opt.get((t, n, m))
-                if a is None or b is None:
-                    cells.append("–")
-                    continue
-                fmt = lambda x: ("%.3g" % x) if x >= 0.001 else ("%.0e" % x if x > 0 else "0")
-                cells.append("%s \\| %s%s" % (fmt(a), fmt(b), " ✗" if a > 1 else ""))
-            out.append("| %s | %s |" % (m, " | ".join(cells)))
-        out.append("")
-    out.append("✗: the lattice is worse than Owen-Sobol there.")
-    out.append("")
-    net_path = os.path.join(res, "family_net.tsv")
-    if os.path.exists(net_path):
-        net = family(net_path)
-        out.append("### Variance / Owen-Sobol's on the family: aligned net | aligned lattice")
-        out.append("")
-        for n in sorted({k[1] for k in net}):
+    def pair_table(title, first, second, worse, need_second):
+        # One table per N: each cell "first | second", ✗ where first is
+        # above Owen-Sobol; without `second`'s value the cell is "–" when
+        # need_second, else "first | –".
+        out.extend(["### Variance / Owen-Sobol's on the family: " + title, ""])
+        fmt = lambda x: ("%.3g" % x) if x >= 0.001 else ("%.0e" % x if x > 0 else "0")
+        for n in sorted({k[1] for k in first}):
             out.append("N = %d" % n)
             out.append("")
             out.append("| member | " + " | ".join("θ = %g°" % t for t in thetas) + " |")
@@ -61,16 +43,21 @@ def main(argv):
             for m in members:
                 cells = []
                 for t in thetas:
-                    a, b = net.get((t, n, m)), lat.get((t, n, m))
-                    if a is None:
+                    a, b = first.get((t, n, m)), second.get((t, n, m))
+                    if a is None or (b is None and need_second):
                         cells.append("–")
                         continue
-                    fmt = lambda x: ("%.3g" % x) if x >= 0.001 else ("%.0e" % x if x > 0 else "0")
                     cells.append("%s \\| %s%s" % (fmt(a), fmt(b) if b is not None else "–", " ✗" if a > 1 else ""))
                 out.append("| %s | %s |" % (m, " | ".join(cells)))
             out.append("")
-        out.append("✗: the net is worse than Owen-Sobol there.")
+        out.append("✗: the %s is worse than Owen-Sobol there." % worse)
         out.append("")
+
+    out = []
+    pair_table("aligned lattice | optimized set", lat, opt, "lattice", True)
+    net_path = os.path.join(res, "family_net.tsv")
+    if os.path.exists(net_path):
+        pair_table("aligned net | aligned lattice", family(net_path), lat, "net", False)
     ev = os.path.join(res, "construction_eval.tsv")
     if os.path.exists(ev):
         rows = list(csv.DictReader(open(ev), delimiter="\t"))

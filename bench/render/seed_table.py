@@ -114,29 +114,27 @@ def main():
                 r_all = [float(o["mse_all"]) / float(p["mse_all"]) for o, p in zip(os_, per) if o]
                 counted = os_counted = os_counted_smooth = counted_all = "—"
                 if estimated(smp):
-                    os_counted = ratio_text([float(runs[s][(scene, "owen-sobol", total)]["mse_edge"]) / e
-                                             for s, e in zip(seeds, edge)
-                                             if (scene, "owen-sobol", total) in runs[s]])
-                    best = []
-                    for s, e in zip(seeds, edge):
-                        cands = [float(r["mse_edge"]) for k, r in runs[s].items()
+                    def against(reference, col):
+                        # reference(run, col): the other sampler's MSE at the same
+                        # total spp in that seed's run, or None.
+                        return ratio_text([reference(runs[s], col) / float(p[col])
+                                           for s, p in zip(seeds, per)
+                                           if reference(runs[s], col) is not None and float(p[col]) > 0])
+
+                    def owen_sobol(run, col):
+                        row = run.get((scene, "owen-sobol", total))
+                        return float(row[col]) if row else None
+
+                    def best_baseline(run, col):
+                        cands = [float(r[col]) for k, r in run.items()
                                  if k[0] == scene and k[2] == total and not estimated(k[1])
                                  and not k[1].endswith("-exact")]
-                        if cands:
-                            best.append(min(cands) / e)
-                    counted = ratio_text(best)
-                    os_counted_smooth = ratio_text(
-                        [float(runs[s][(scene, "owen-sobol", total)]["mse_smooth"]) / float(p["mse_smooth"])
-                         for s, p in zip(seeds, per)
-                         if (scene, "owen-sobol", total) in runs[s] and float(p["mse_smooth"]) > 0])
-                    best_all = []
-                    for s, p in zip(seeds, per):
-                        cands = [float(r["mse_all"]) for k, r in runs[s].items()
-                                 if k[0] == scene and k[2] == total and not estimated(k[1])
-                                 and not k[1].endswith("-exact")]
-                        if cands:
-                            best_all.append(min(cands) / float(p["mse_all"]))
-                    counted_all = ratio_text(best_all)
+                        return min(cands) if cands else None
+
+                    os_counted = against(owen_sobol, "mse_edge")
+                    counted = against(best_baseline, "mse_edge")
+                    os_counted_smooth = against(owen_sobol, "mse_smooth")
+                    counted_all = against(best_baseline, "mse_all")
                 out.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                     smp, total, ", ".join("%.3g" % e for e in edge), ratio_text(r_edge),
                     ratio_text(r_smooth), ratio_text(r_all), os_counted, counted,
