@@ -302,11 +302,13 @@ int Main(int argc, char** argv) {
     }
   }
 
-  for (const Variant& v : variants) {
-    if (v.reuse && !ParsePrepass(a["prepass"]).ok()) break;  // refused below, with the reason
-    if (v.reuse && !ParsePrepass(a["prepass"])->Reusable()) {
-      std::fprintf(stderr, "render_bench: %s needs a reusable --prepass (samplesM), "
-                   "got %s\n", v.label.c_str(), a["prepass"].c_str());
+  // Checked before any work starts; a --prepass that does not parse is
+  // refused below with its reason.
+  if (auto record = ParsePrepass(a["prepass"]); record.ok() && !record->Reusable()) {
+    for (const Variant& v : variants) {
+      if (!v.reuse) continue;
+      std::fprintf(stderr, "render_bench: %s needs a reusable --prepass (samplesM or edgesM), got %s\n",
+                   v.label.c_str(), a["prepass"].c_str());
       return 2;
     }
   }
