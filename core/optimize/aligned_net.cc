@@ -92,21 +92,23 @@ std::vector<Weighted> Frequencies(uint32_t n, const std::vector<double>& dirs, c
 class FlipState {
  public:
   FlipState(uint32_t n, int m, uint64_t seed) : n_(n), m_(m) {
-    in_[0].resize(n), in_[1].resize(n), out_[0].resize(n), out_[1].resize(n);
-    pos_[0].resize(n), pos_[1].resize(n);
-    for (int d = 0; d < 2; ++d) flips_[d].assign(n, 0);  // nodes 0 .. n-2
+    for (int d = 0; d < 2; ++d) {
+      out_[d].resize(n), pos_[d].resize(n);
+      flips_[d].assign(n, 0);  // nodes 0 .. n-2
+    }
     Pcg32 rng(seed);
     for (int d = 0; d < 2; ++d) {
       for (uint32_t i = 0; i + 1 < n; ++i) flips_[d][i] = rng.NextU32() & 1u;
     }
+    // The first N Sobol points' m-digit coordinates are permutations of
+    // 0 .. N-1 (the net): pos_ is their inverse, point i's input digits in
+    // dimension d are the v with pos_[d][v] = i.
     for (uint32_t i = 0; i < n; ++i) {
-      in_[0][i] = SobolDim0(i) >> (32 - m);
-      in_[1][i] = SobolDim1(i) >> (32 - m);
-      pos_[0][in_[0][i]] = i;
-      pos_[1][in_[1][i]] = i;
+      pos_[0][SobolDim0(i) >> (32 - m)] = i;
+      pos_[1][SobolDim1(i) >> (32 - m)] = i;
     }
     for (int d = 0; d < 2; ++d) {
-      for (uint32_t i = 0; i < n; ++i) out_[d][i] = Scramble(d, in_[d][i]);
+      for (uint32_t v = 0; v < n; ++v) out_[d][pos_[d][v]] = Scramble(d, v);
     }
   }
   static uint32_t Node(int level, uint32_t prefix) { return (1u << level) - 1 + prefix; }
@@ -141,7 +143,7 @@ class FlipState {
  private:
   uint32_t n_;
   int m_;
-  std::vector<uint32_t> in_[2], out_[2], pos_[2];
+  std::vector<uint32_t> out_[2], pos_[2];
   std::vector<uint32_t> flips_[2];
 };
 
