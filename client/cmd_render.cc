@@ -132,10 +132,12 @@ void AddRenderCommand(CLI::App& app) {
                  "optionally cP (a confidence floor of P percent)")
       ->capture_default_str();
   c->add_option("--reuse-prepass", o->reuse,
-                 "fold the pre-pass's samples into each pixel's estimate, without bias: auto (when\n"
-                 "the pre-pass allows it: samplesM, edgesM), on (refuse a pre-pass that does not), off")
+                 "fold the pre-pass's samples into each pixel's estimate: auto (when the pre-pass\n"
+                 "allows it: samplesM, edgesM; a pixel without a direction continues the pre-pass's\n"
+                 "Owen-Sobol sequence), on (refuse a pre-pass that does not), unbiased (as on, but\n"
+                 "count weights on every pixel: no selection bias, noisier smooth pixels), off")
       ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "on", "off"}));
+      ->check(CLI::IsMember({"auto", "on", "unbiased", "off"}));
   c->add_option("--lattice-window", o->request.lattice_window_deg,
                  "aligned-lattice*: degrees either side of a pixel's θ its lattice is chosen for")
       ->capture_default_str()

@@ -25,6 +25,10 @@ struct PixelDirection {
   // direction-less pixel too.
   double prepass_mean = 0.0;
   uint32_t prepass_samples = 0;
+  // The scramble of those samples: they are the first prepass_samples points
+  // of OwenScrambledSobol(·, prepass_seed), so a sampler can continue the
+  // sequence (render/prepass_reuse.h).
+  uint64_t prepass_seed = 0;
 };
 
 // The bound: the direction from the scene's geometry. The pixel's

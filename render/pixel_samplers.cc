@@ -356,7 +356,9 @@ bool ReadsEstimatedDirections(const SamplerConfig& c) {
 StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c) {
   auto base = MakeBaseSampler(c);
   if (!base.ok() || !c.reuse_prepass || !ReadsEstimatedDirections(c)) return base;
-  return ReusePrepass(std::move(*base), c.estimated, c.n);
+  const bool owen_sobol_when_none = (c.name == "aligned" || c.name == "aligned-lattice") &&
+                                    c.policy.none == AlignedPolicy::None::kOwenSobol;
+  return ReusePrepass(std::move(*base), c.estimated, c.n, c.continue_prepass && owen_sobol_when_none);
 }
 
 }  // namespace alignset::render

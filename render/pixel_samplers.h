@@ -52,8 +52,12 @@ struct SamplerConfig {
   double segment_length = 0.5;             // segment, in pixel widths
   int pool = 64;                           // pooled samplers: distinct sets per N
   // The samplers that read `estimated` add each pixel's randomized pre-pass
-  // to their estimate (render/prepass_reuse.h); the others ignore it.
+  // to their estimate (render/prepass_reuse.h); the others ignore it. With
+  // continue_prepass, aligned and aligned-lattice (policy none = Owen-Sobol)
+  // continue the pre-pass's sequence on a direction-less pixel
+  // (ContinuedPrepass) instead of weighting two independent sets.
   bool reuse_prepass = false;
+  bool continue_prepass = true;
 };
 
 // Builds a sampler by name:

@@ -58,13 +58,16 @@ StatusOr<RenderSummary> RunRender(
   // The pre-pass only for the samplers that read the estimated θ (it costs
   // about 3 ms per pixel with grid16).
   const bool uses_estimate = ReadsEstimatedDirections(c);
-  if (uses_estimate && r.reuse_prepass == PrepassReuse::kOn && !prepass->Reusable()) {
+  const bool must_reuse =
+      r.reuse_prepass == PrepassReuse::kOn || r.reuse_prepass == PrepassReuse::kUnbiased;
+  if (uses_estimate && must_reuse && !prepass->Reusable()) {
     return Status::InvalidArgument(
         "pre-pass " + prepass->Name() + " cannot be reused in the estimate (a grid's mean is " +
         "biased or far noisier than the sampler's own); reuse needs samplesM or edgesM, or turn "
         "reuse off");
   }
   c.reuse_prepass = uses_estimate && r.reuse_prepass != PrepassReuse::kOff && prepass->Reusable();
+  c.continue_prepass = r.reuse_prepass != PrepassReuse::kUnbiased;
   const std::vector<PixelDirection> estimated =
       uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
                     : std::vector<PixelDirection>(scene->size());

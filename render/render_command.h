@@ -28,7 +28,8 @@ struct RenderRequest {
   // one by N (AutoPrepass).
   std::string prepass = kAutoPrepass;
   // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h):
-  // auto when the pre-pass allows it; on refuses one that does not.
+  // auto when the pre-pass allows it; on refuses one that does not;
+  // unbiased as on, with the count weights on direction-less pixels too.
   PrepassReuse reuse_prepass = PrepassReuse::kAuto;
   double lattice_window_deg = 1.0;  // aligned-lattice*: the window of normals a generator is chosen for
   ConnectOptions server;       // aligned, aligned-exact only

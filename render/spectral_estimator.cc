@@ -75,8 +75,10 @@ std::string AutoPrepass(uint32_t n) {
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {
   if (text == "auto") return PrepassReuse::kAuto;
   if (text == "on") return PrepassReuse::kOn;
+  if (text == "unbiased") return PrepassReuse::kUnbiased;
   if (text == "off") return PrepassReuse::kOff;
-  return Status::InvalidArgument("pre-pass reuse must be auto, on or off, got '" + text + "'");
+  return Status::InvalidArgument("pre-pass reuse must be auto, on, unbiased or off, got '" + text +
+                                 "'");
 }
 
 namespace {
@@ -124,6 +126,7 @@ class SpectralEstimator : public DirectionEstimator {
     if (p_.Reusable()) {
       d.prepass_mean = mean;
       d.prepass_samples = static_cast<uint32_t>(p_.Evaluations());
+      d.prepass_seed = pixel_seed;
     }
     return d;
   }
@@ -174,6 +177,7 @@ PixelDirection ApplyConfidenceFloor(const PixelDirection& d, int min_confidence_
   PixelDirection none;
   none.prepass_mean = d.prepass_mean;
   none.prepass_samples = d.prepass_samples;
+  none.prepass_seed = d.prepass_seed;
   return none;
 }
 

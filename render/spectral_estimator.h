@@ -76,11 +76,14 @@ inline constexpr const char* kDefaultPrepass = "edges256";
 // (docs/rendering.md, "Every sample counted").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n);
-// Whether a pre-pass is folded into the pixel's estimate
+// Whether and how a pre-pass is folded into the pixel's estimate
 // (render/prepass_reuse.h): kAuto, the default, whenever the pre-pass is
-// reusable (the default one is); kOn refuses a pre-pass that is not.
-enum class PrepassReuse { kAuto, kOn, kOff };
-// "auto", "on", "off"; INVALID_ARGUMENT otherwise.
+// reusable (the default one is), a direction-less pixel continuing the
+// pre-pass's sequence; kOn the same but refuses a pre-pass that is not
+// reusable; kUnbiased the count weights on every pixel (strictly unbiased,
+// at a cost on smooth pixels); kOff not at all.
+enum class PrepassReuse { kAuto, kOn, kUnbiased, kOff };
+// "auto", "on", "unbiased", "off"; INVALID_ARGUMENT otherwise.
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text);
 
 std::unique_ptr<DirectionEstimator> MakeSpectralEstimator(const Prepass& prepass);

@@ -82,6 +82,7 @@ struct Variant {
   bool per_pixel_shift = true;
   std::string prepass;  // aligned: the estimator's pre-pass (empty: the one of record)
   bool reuse = false;   // the pre-pass folded into the estimate (render/prepass_reuse.h)
+  bool continued = true;  // with reuse: direction-less pixels continue the pre-pass's sequence
 };
 
 bool IsLattice(const Variant& v) { return v.sampler.rfind("aligned-lattice", 0) == 0; }
@@ -94,12 +95,17 @@ std::vector<Variant> AllVariants() {
     v.push_back({s, s});
   }
   // Every sample counted and used: the estimated samplers with their
-  // (randomized) pre-pass folded in; labels end in "+reuse".
+  // (randomized) pre-pass folded in; labels end in "+reuse" (the renderer's
+  // default) or "+unbiased" (count weights on direction-less pixels too).
   for (const char* s : {"aligned", "aligned-lattice", "pmj02bn-sheared"}) {
     Variant r{std::string(s) + "+reuse", s};
     r.reuse = true;
     v.push_back(r);
   }
+  Variant unbiased{"aligned-lattice+unbiased", "aligned-lattice"};
+  unbiased.reuse = true;
+  unbiased.continued = false;
+  v.push_back(unbiased);
   Variant axis{"aligned-none-axis", "aligned"};
   axis.policy.none = AlignedPolicy::None::kAxisSet;
   v.push_back(axis);
@@ -267,7 +273,7 @@ int Main(int argc, char** argv) {
       {"scenes", "antialias,shadow"}, {"samplers", ""}, {"threads", "2"}, {"seed", "1"},
       {"prepass", kDefaultPrepass}, {"alt-prepass", "samples256"},
       {"compare-prepass", "grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024"},
-      {"line-rates", "1"}, {"two-max-n", "65536"}};
+      {"line-rates", "1"}, {"two-max-n", "65536"}, {"lattice-window", "1"}};
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0 || i + 1 >= argc || !a.count(k.substr(2))) {
@@ -430,6 +436,14 @@ int Main(int argc, char** argv) {
   tile_csv << "n,sigma,optimized,random,seconds\n";
 
   const uint32_t two_max_n = std::strtoul(a["two-max-n"].c_str(), nullptr, 10);
+  // aligned-lattice*: degrees either side of a pixel's θ its lattice is
+  // chosen for (`alignset render --lattice-window`).
+  const double lattice_window = std::strtod(a["lattice-window"].c_str(), nullptr);
+  if (!(lattice_window >= 0.0 && lattice_window <= 10.0)) {
+    std::fprintf(stderr, "render_bench: --lattice-window must be in [0, 10] degrees, got %s\n",
+                 a["lattice-window"].c_str());
+    return 2;
+  }
   for (uint32_t n : ns) {
     // Above two_max_n the two-direction variants fall back to one direction,
     // so the *-1dir ablation would repeat its parent.
@@ -492,7 +506,7 @@ int Main(int argc, char** argv) {
       if (!maps.empty()) {
         LatticeTableStats st;
         cli::Progress bar("lattices");
-        auto built = AlignedLatticeTable(n, maps, policy, 1.0, threads, &st,
+        auto built = AlignedLatticeTable(n, maps, policy, lattice_window, threads, &st,
                                          [&](double done, double total) { bar.Update(done, total, ""); });
         bar.Finish("");
         if (!built.ok()) {
@@ -530,6 +544,7 @@ int Main(int argc, char** argv) {
         c.policy = v.policy;
         c.per_pixel_shift = v.per_pixel_shift;
         c.reuse_prepass = v.reuse;
+        c.continue_prepass = v.continued;
         c.tile = &tile;
         c.orientation = v.orientation;
         auto sampler = MakePixelSampler(c);
@@ -558,7 +573,7 @@ int Main(int argc, char** argv) {
         // acceptance table compares (plot_render.py bootstraps its ratios
         // over their edge pixels).
         const bool compared = n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
-                                           v.label == "aligned-lattice" || v.label == "rank1-lattice" ||
+                                           v.sampler == "aligned-lattice" || v.label == "rank1-lattice" ||
                                            v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
         if (compared || std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {
           WriteNpy(out + "/images/" + d.scene.name() + "_" + v.label + "_n" + std::to_string(n) + ".npy",

@@ -17,7 +17,8 @@ import os
 import sys
 
 # The samplers that read an estimated direction pay for its pre-pass; a
-# "+reuse" variant folds the pre-pass into its estimate and pays the same.
+# "+reuse" or "+unbiased" variant folds the pre-pass into its estimate and
+# pays the same.
 ESTIMATED = {"aligned", "aligned-lattice", "pmj02bn-sheared"}
 
 
@@ -90,7 +91,9 @@ def main():
                "the last two compare at the same total samples per pixel, the baselines "
                "rendered again at N + the pre-pass (the best of Owen-Sobol, pmj02bn, rank-1 "
                "lattice and screen-space rank-1 per seed). A `+reuse` row folds its pre-pass into "
-               "the estimate without bias (render/prepass_reuse.h).\n"
+               "the estimate, a pixel without a direction continuing the pre-pass's Owen-Sobol "
+               "sequence (the renderer's default); a `+unbiased` row weights the pre-pass by the "
+               "counts on every pixel (render/prepass_reuse.h).\n"
                % (" ".join(seeds), a.n, prepass_evals, prepass))
     for scene in scenes:
         for n in ns:

@@ -89,6 +89,19 @@ TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   EXPECT_NE(Said(r).find("cannot be reused"), std::string::npos) << Said(r);
   const std::string refused = Said(r);
   EXPECT_EQ(std::count(refused.begin(), refused.end(), '\n'), 1) << refused;
+  // The strictly unbiased weighting counts the same and refuses the same;
+  // its image differs from the default's on the direction-less pixels.
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass samples64 --reuse-prepass unbiased -o " +
+             dir_ + "/lu.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64 + 64 pre-pass (reused in the estimate) = 128\n"),
+            std::string::npos)
+      << Said(r);
+  EXPECT_NE(ReadNpy(dir_ + "/lu.npy")->values, ReadNpy(dir_ + "/lr.npy")->values);
+  r = RunCli("render --size 12 --sampler aligned-lattice -n 64 --prepass grid16 --reuse-prepass unbiased -o " +
+             dir_ + "/lgu.npy");
+  EXPECT_EQ(r.exit_code, 2) << Said(r);
+  EXPECT_NE(Said(r).find("cannot be reused"), std::string::npos) << Said(r);
   r = RunCli("render --size 12 --sampler aligned-lattice-exact -n 64 -o " + dir_ + "/le.npy");
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);

@@ -36,6 +36,19 @@ TEST(OwenSobol, EveryPowerOfTwoIsANetForSeveralSeeds) {
   }
 }
 
+TEST(OwenSobol, EveryAlignedBlockOfAPowerOfTwoIsANet) {
+  // Points [k 2^m, (k + 1) 2^m) of the shuffled sequence: the renderer
+  // weights such blocks as nets of their own (render/prepass_reuse.h).
+  for (uint64_t seed : {3ull, 77ull}) {
+    const PointSet all = OwenScrambledSobol(4096, seed);
+    for (int m = 2; m <= 10; m += 2) {
+      for (uint32_t k : {1u, 2u, 3u, 4096u / (1u << m) - 1}) {
+        ExpectNet(PointSet(all.begin() + k * (1u << m), all.begin() + (k + 1) * (1u << m)), m);
+      }
+    }
+  }
+}
+
 TEST(OwenSobol, UnscrambledDimensionsAreANet) {
   for (int m = 2; m <= 10; ++m) {
     PointSet pts;
