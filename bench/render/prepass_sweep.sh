@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The pre-pass size and the lattice's window at one N, every sample counted:
+# renders aligned-lattice+reuse with edgesM for each M and each window W
+# (degrees either side of the estimated θ a lattice is chosen for), and the
+# four baselines at N + M, on each scene seed; then one table
+# (bench/render/prepass_sweep.py) of Owen-Sobol's and the best baseline's
+# edge MSE at N + M over the lattice's.
+#
+#   bash bench/render/prepass_sweep.sh                      # N = 256, seeds 1 2 3
+#   N=1024 MS="64 256" WINDOWS="1 2" SEEDS="4 5" bash bench/render/prepass_sweep.sh
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+BUILD_DIR="${BUILD_DIR:-build}"
+SEEDS="${SEEDS:-1 2 3}"
+N="${N:-256}"
+MS="${MS:-32 64 128}"
+WINDOWS="${WINDOWS:-0.5 1 2 3}"
+RAW="${RAW:-$BUILD_DIR/render-sweep$N}"
+OUT="${OUT:-bench/results/render_prepass_sweep$N.md}"
+. bench/render/render_server.sh
+mkdir -p "$RAW"
+start_render_server
+for seed in $SEEDS; do
+  for m in $MS; do
+    common=(--server "$ADDR" --threads 2 --seed "$seed" --line-rates 0 --alt-prepass "" --compare-prepass ""
+            --image-n "" --two-max-n 1024 --prepass "edges$m")
+    for w in $WINDOWS; do
+      "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/s$seed-m$m-w$w" --n "$N" \
+        --samplers owen-sobol,aligned-lattice+reuse --lattice-window "$w"
+    done
+    "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/s$seed-m$m-counted" --n $((N + m)) \
+      --samplers owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1
+  done
+done
+/usr/bin/python3 bench/render/prepass_sweep.py --raw "$RAW" --n "$N" --seeds "$SEEDS" --ms "$MS" \
+  --windows "$WINDOWS" --out "$OUT"
+echo "prepass_sweep: wrote $OUT"
