@@ -65,13 +65,18 @@ std::vector<PixelDirection> GeometryDirections(const Scene& scene) {
   return out;
 }
 
-std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
-                                               uint64_t seed, int threads) {
+std::vector<PixelDirection> DirectionEstimator::EstimateScene(const Scene& scene, uint64_t seed,
+                                                              int threads) const {
   std::vector<PixelDirection> out(scene.size());
   ParallelFor(scene.size(), threads, [&](size_t i) {
-    out[i] = e.Estimate(scene.Pixel(i), HashCombine(seed, i));
+    out[i] = Estimate(scene.Pixel(i), HashCombine(seed, i));
   });
   return out;
+}
+
+std::vector<PixelDirection> EstimateDirections(const Scene& scene, const DirectionEstimator& e,
+                                               uint64_t seed, int threads) {
+  return e.EstimateScene(scene, seed, threads);
 }
 
 }  // namespace alignset::render

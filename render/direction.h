@@ -55,6 +55,10 @@ class DirectionEstimator {
   // Pre-passes the estimator refused (counted, never silent: such a pixel is
   // treated as direction-less).
   virtual int64_t refusals() const { return 0; }
+  // Every pixel of a scene, pixel i's pre-pass seeded by HashCombine(seed,
+  // i). By default each pixel on its own; an estimator that also reads its
+  // neighbours' pre-passes overrides this.
+  virtual std::vector<PixelDirection> EstimateScene(const Scene& scene, uint64_t seed, int threads) const;
 };
 
 // The estimator of record is core/analysis's (render/spectral_estimator.h).

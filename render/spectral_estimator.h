@@ -26,7 +26,13 @@ namespace alignset::render {
 //                the midpoints of neighbouring samples whose values jump
 //                (core/analysis/edge_line_fit.h): on a straight step 0.5°
 //                median at M = 256 where the scattered spectral path is 20°
-//                (bench/results/direction_accuracy.txt).
+//                (bench/results/direction_accuracy.txt);
+//  - "nedgesM":  the same M points per pixel, and the edge-line fit on the
+//                samples of the pixel and of its neighbours within half a
+//                pixel (about 4M samples; a renderer has its neighbours'
+//                pre-pass too), looking only for lines that cross the pixel;
+//                the pixel's own fit where that finds nothing. The pixel
+//                pays M evaluations, as with edgesM, and reuses its own M.
 // A suffix "cP" (grid16c50) adds the renderer's own floor on the estimator's
 // confidence (the share of the weight in the fitted lobe, here P percent):
 // below it the pixel is treated as direction-less (the first lobe's; a
@@ -42,12 +48,14 @@ namespace alignset::render {
 // path, errs to first order in the offset on a pixel that is not periodic
 // (20 and 10^5 times), so neither is offered for reuse.
 struct Prepass {
-  enum class Kind { kGrid, kJitteredGrid, kSamples, kEdgeLines };
+  enum class Kind { kGrid, kJitteredGrid, kSamples, kEdgeLines, kPooledEdgeLines };
   Kind kind = Kind::kGrid;
   int count = 16;            // the grid side G, or the sample count M
   int min_confidence_pct = 0;
   std::string Name() const;
-  bool Scattered() const { return kind == Kind::kSamples || kind == Kind::kEdgeLines; }
+  bool Scattered() const {
+    return kind == Kind::kSamples || kind == Kind::kEdgeLines || kind == Kind::kPooledEdgeLines;
+  }
   int Evaluations() const { return Scattered() ? count : count * count; }
   // Whether the mean of the pre-pass's values is handed on for reuse (see
   // above: the Owen-Sobol pre-passes).
@@ -55,7 +63,8 @@ struct Prepass {
 };
 
 // INVALID_ARGUMENT for anything but gridG / jgridG (8 <= G <= 64) or
-// samplesM / edgesM (16 <= M <= 4096), each with an optional cP (0 <= P <= 100).
+// samplesM / edgesM / nedgesM (16 <= M <= 4096), each with an optional cP
+// (0 <= P <= 100).
 StatusOr<Prepass> ParsePrepass(const std::string& spec);
 
 // The default pre-pass of the estimated samplers: 256 Owen-Sobol samples

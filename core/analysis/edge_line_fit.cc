@@ -47,6 +47,27 @@ Line FitLine(const std::vector<Point2>& m, const std::vector<size_t>& idx) {
   return l;
 }
 
+// Whether the line meets the options' focus box (always, without one): the
+// box's corners do not all lie on one side of it.
+bool Crosses(const Line& l, const EdgeLineOptions& o) {
+  if (!o.focus) return true;
+  double lo = 0.0, hi = 0.0;
+  bool first = true;
+  for (double x : {o.focus_x0, o.focus_x1}) {
+    for (double y : {o.focus_y0, o.focus_y1}) {
+      const double s = (x - l.cx) * l.nx + (y - l.cy) * l.ny;
+      lo = first ? s : std::min(lo, s);
+      hi = first ? s : std::max(hi, s);
+      first = false;
+    }
+  }
+  return lo <= 0.0 && hi >= 0.0;
+}
+
+bool InFocus(const Point2& p, const EdgeLineOptions& o) {
+  return !o.focus || (p.x >= o.focus_x0 && p.x <= o.focus_x1 && p.y >= o.focus_y0 && p.y <= o.focus_y1);
+}
+
 struct Found {
   bool ok = false;
   Line line;
@@ -58,17 +79,25 @@ Found BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, d
                const EdgeLineOptions& o, uint64_t seed) {
   Found best;
   if (among.size() < 2) return best;
+  // With a focus box, a line must rest on the box's own evidence: one of its
+  // two crossings lies in the box, and so do at least two of its inliers.
+  std::vector<size_t> anchors;
+  for (size_t i : among) {
+    if (InFocus(m[i], o)) anchors.push_back(i);
+  }
+  if (anchors.size() < 2) return best;
   // Long baselines first (a third of the patch: accurate candidates); an
   // edge that only clips a corner has none, and gets short ones.
   for (double baseline : {1.0 / 3.0, 4.0 * band}) {
     Pcg32 rng(seed);
     int tried = 0;
     for (int draw = 0; draw < 8 * o.candidates && tried < o.candidates; ++draw) {
-      const size_t a = among[rng.NextU32() % among.size()], b = among[rng.NextU32() % among.size()];
+      const size_t a = anchors[rng.NextU32() % anchors.size()], b = among[rng.NextU32() % among.size()];
       const double dx = m[b].x - m[a].x, dy = m[b].y - m[a].y, len = std::hypot(dx, dy);
       if (len < baseline) continue;
+      const Line l{m[a].x, m[a].y, -dy / len, dx / len};
+      if (!Crosses(l, o)) continue;
       ++tried;
-      Line l{m[a].x, m[a].y, -dy / len, dx / len};
       std::vector<size_t> in = Inliers(l, m, among, band);
       if (in.size() > best.inliers.size()) best = {true, l, std::move(in)};
     }
@@ -78,9 +107,14 @@ Found BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, d
   for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
     const Line l = FitLine(m, best.inliers);
     std::vector<size_t> in = Inliers(l, m, among, band);
-    if (in.size() < 2) break;
+    if (in.size() < 2 || !Crosses(l, o)) break;
     best.line = l;
     best.inliers = std::move(in);
+  }
+  if (o.focus) {
+    size_t inside = 0;
+    for (size_t i : best.inliers) inside += InFocus(m[i], o);
+    if (inside < 2) best.ok = false;
   }
   return best;
 }
@@ -121,6 +155,10 @@ Status ValidateOptions(const EdgeLineOptions& o) {
   }
   if (!(o.min_separation_deg >= 0.0 && o.min_separation_deg <= 90.0)) {
     return Status::InvalidArgument("edge lines: min_separation_deg must be in [0, 90]");
+  }
+  if (o.focus && !(o.focus_x0 >= 0.0 && o.focus_x0 < o.focus_x1 && o.focus_x1 <= 1.0 &&
+                   o.focus_y0 >= 0.0 && o.focus_y0 < o.focus_y1 && o.focus_y1 <= 1.0)) {
+    return Status::InvalidArgument("edge lines: the focus box must be a non-empty box inside [0,1]^2");
   }
   return Status::Ok();
 }

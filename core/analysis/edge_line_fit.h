@@ -40,6 +40,12 @@ struct EdgeLineOptions {
   bool second = false;
   double second_min_share = 0.25;
   double min_separation_deg = 2.0;
+  // A focus box (in the patch's coordinates, inside [0,1]^2): only lines
+  // that cross it are candidates. A patch pooled from a pixel and its
+  // neighbours (the renderer's nedgesM pre-pass) looks for the edge through
+  // the pixel, not for the strongest edge nearby.
+  bool focus = false;
+  double focus_x0 = 0.0, focus_y0 = 0.0, focus_x1 = 1.0, focus_y1 = 1.0;
 };
 
 // INVALID_ARGUMENT for an invalid patch (ValidateSampledPatch) or options

@@ -114,6 +114,41 @@ TEST(EdgeLineFit, RefusesBadInput) {
   o = {};
   o.neighbour_radius = 0.1;
   EXPECT_FALSE(EstimateEdgeLines(OwenSobolPatch(Step(30.0, 0.0), 64, 1), o).ok());
+  for (auto [x0, x1] : {std::pair{0.5, 0.5}, std::pair{-0.1, 0.5}, std::pair{0.2, 1.2}}) {
+    o = {};
+    o.focus = true;
+    o.focus_x0 = x0, o.focus_x1 = x1;
+    EXPECT_FALSE(EstimateEdgeLines(OwenSobolPatch(Step(30.0, 0.0), 64, 1), o).ok()) << x0 << " " << x1;
+  }
+}
+
+TEST(EdgeLineFit, AFocusBoxPicksTheEdgeThroughIt) {
+  // Two edges across the whole patch: on the left half a step at 20 degrees,
+  // on the right half a weaker one at 160. With a focus box on either, the
+  // fit finds that one; a box between them gets no line, however clear the
+  // edges beside it.
+  auto two = [](const Point2& p) {
+    const bool left = p.x < 0.5;
+    const Vec2 n = UnitVector(left ? 20.0 : 160.0);
+    const Point2 c = left ? Point2{0.3, 0.5} : Point2{0.8, 0.5};
+    return (p.x - c.x) * n.x + (p.y - c.y) * n.y >= 0.0 ? (left ? 1.0 : 0.6) : 0.0;
+  };
+  const SampledPatch s = OwenSobolPatch(two, 1024, 3);
+  EdgeLineOptions o;
+  o.min_share = 0.0;
+  o.focus = true;
+  o.focus_y0 = 0.2, o.focus_y1 = 0.8;
+  for (auto [x0, x1, want] : {std::tuple{0.15, 0.45, 20.0}, std::tuple{0.65, 0.95, 160.0}}) {
+    o.focus_x0 = x0, o.focus_x1 = x1;
+    auto e = EstimateEdgeLines(s, o);
+    ASSERT_TRUE(e.ok());
+    ASSERT_EQ(e->first.status, DirectionStatus::kFound) << want;
+    EXPECT_LT(AxialDistanceDeg(e->first.theta_deg, want), 2.0) << e->first.theta_deg;
+  }
+  o.focus_x0 = 0.52, o.focus_x1 = 0.58;
+  auto none = EstimateEdgeLines(s, o);
+  ASSERT_TRUE(none.ok());
+  EXPECT_NE(none->first.status, DirectionStatus::kFound) << none->first.theta_deg;
 }
 
 TEST(EdgeLineFit, IsDeterministic) {
