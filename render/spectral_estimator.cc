@@ -78,7 +78,7 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
 }
 
 std::string AutoPrepass(uint32_t n) {
-  return "edges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256));
+  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256));
 }
 
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {

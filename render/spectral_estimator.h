@@ -31,8 +31,11 @@ namespace alignset::render {
 //                samples of the pixel and of its neighbours within half a
 //                pixel (about 4M samples; a renderer has its neighbours'
 //                pre-pass too), looking only for lines that cross the pixel;
-//                the pixel's own fit where that finds nothing. The pixel
-//                pays M evaluations, as with edgesM, and reuses its own M.
+//                the pixel's own fit where that finds nothing or where the
+//                two disagree by more than 8 degrees. The pixel pays M
+//                evaluations, as with edgesM, and reuses its own M. Pooling
+//                needs the scene (DirectionEstimator::EstimateScene); one
+//                pixel's Estimate alone is edgesM's fit.
 // A suffix "cP" (grid16c50) adds the renderer's own floor on the estimator's
 // confidence (the share of the weight in the fitted lobe, here P percent):
 // below it the pixel is treated as direction-less (the first lobe's; a
@@ -67,22 +70,26 @@ struct Prepass {
 // (0 <= P <= 100).
 StatusOr<Prepass> ParsePrepass(const std::string& spec);
 
-// The default pre-pass of the estimated samplers: 256 Owen-Sobol samples
-// and the edge-line fit. Against grid16c50, the default before it (the same
-// 256 evaluations), it made every estimated sampler's edge error lower on
-// the three scene seeds at N = 256, 1024 and 4096 (docs/rendering.md,
-// "Every sample counted"), and its samples are reusable. (Its confidence is
-// the inliers' share, already at least one half, so a c50 floor is a no-op.)
-inline constexpr const char* kDefaultPrepass = "edges256";
-// `alignset render`'s default, "auto": the edge-line fit on a quarter of the
-// sampler's N, at least 16 and at most 256 samples (edges64 at N = 256,
-// edges256 from N = 1024 on). Measured on the three scene seeds with
-// aligned lattices: at N = 256, edges64 is 1.7-2.1x below Owen-Sobol at the
-// same total (320) where edges256 is 1.2-1.4x (at 512); against the best
-// other sampler at that total edges256 is the safer one (1.20-1.38x on
-// every seed; edges64 1.05-1.21x, one seed 0.72x, the plain rank-1 lattice
-// being good at 320). At 1024 edges256 is ahead on both counts
-// (docs/rendering.md, "Every sample counted").
+// The default pre-pass of the estimated samplers in the benchmarks: 256
+// Owen-Sobol samples per pixel and the edge-line fit pooled with the
+// neighbours'. edges256 (the pixel's own samples) made every estimated
+// sampler's edge error lower than grid16c50 (the same 256 evaluations) on
+// the three scene seeds at N = 256, 1024 and 4096, and pooling lowered
+// aligned-lattice's by another 1.1-1.4x on antialias at 1024 and 4096 and
+// left shadow within 1% (docs/rendering.md, "Every sample counted"). Its
+// samples are reusable. (Its confidence is the inliers' share, at least
+// one half, so a c50 floor is a no-op.)
+inline constexpr const char* kDefaultPrepass = "nedges256";
+// `alignset render`'s default, "auto": the pooled edge-line fit on a
+// quarter of the sampler's N, at least 16 and at most 256 samples (nedges64
+// at N = 256, nedges256 from N = 1024 on). The quarter was measured with
+// the pixel's own samples on the three scene seeds with aligned lattices:
+// at N = 256, edges64 is 1.7-2.1x below Owen-Sobol at the same total (320)
+// where edges256 is 1.2-1.4x (at 512), and a sweep of 32, 64 and 128
+// samples and of the lattice's window kept 64
+// (bench/results/render_prepass_sweep256.md); at 1024 edges256 is ahead.
+// With pooling, nedges64 at 256 is 2.5x (antialias) and 1.7x (shadow)
+// below Owen-Sobol at 320 (docs/rendering.md, "Every sample counted").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n);
 // Whether and how a pre-pass is folded into the pixel's estimate

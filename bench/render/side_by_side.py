@@ -1,10 +1,15 @@
 #!/usr/bin/env python3
 """One scene, side by side: the exact reference and each sampler's image at one N,
 with its error map below (|image - reference|, one logarithmic colour scale for
-all) and its edge-pixel MSE in the title. Reads render_bench's images/ folder.
+all) and its edge-pixel MSE in the title. Reads render_bench's images/ folders.
 
   side_by_side.py --images DIR/images --scene shadow --n 1024 \
       --samplers owen-sobol,rank1-lattice,aligned,aligned-lattice --out FIG.png
+
+Every sample counted: a sampler written name@N is read at that N instead (the
+baselines at N + the pre-pass), and --images may list several folders, comma
+separated, searched in order (seeds.sh keeps the baselines at N + P in
+seedS-counted/images).
 """
 import argparse
 import os
@@ -27,10 +32,23 @@ def main():
     ap.add_argument("--title", default="")
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
-    ref = np.load(os.path.join(a.images, a.scene + "_reference.npy"))
-    classes = np.load(os.path.join(a.images, a.scene + "_classes.npy"))
-    names = a.samplers.split(",")
-    imgs = [np.load(os.path.join(a.images, "%s_%s_n%d.npy" % (a.scene, s, a.n))) for s in names]
+    folders = a.images.split(",")
+
+    def load(name):
+        for d in folders:
+            path = os.path.join(d, name)
+            if os.path.exists(path):
+                return np.load(path)
+        raise SystemExit("side_by_side.py: %s is in none of %s" % (name, folders))
+
+    ref = load(a.scene + "_reference.npy")
+    classes = load(a.scene + "_classes.npy")
+    names, imgs = [], []
+    for entry in a.samplers.split(","):
+        sampler, _, n = entry.partition("@")
+        n = int(n) if n else a.n
+        imgs.append(load("%s_%s_n%d.npy" % (a.scene, sampler, n)))
+        names.append(sampler if n == a.n else "%s at %d" % (sampler, n))
     errs = [np.abs(i - ref) for i in imgs]
     hi = max(e.max() for e in errs)
     lo = hi * 1e-5

@@ -48,7 +48,9 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
       if (classes[i] == PixelClass::kSmooth && smooth < 1) pixels.push_back(i), ++smooth;
     }
     ASSERT_EQ(pixels.size(), 6u) << name;
-    // The estimator of record on these pixels, seeded as EstimateDirections does.
+    // The estimator of record on these pixels, seeded as EstimateDirections
+    // does (each pixel's own fit: the pooling with its neighbours is tested
+    // in tests/render).
     const auto estimator = MakeSpectralEstimator(*ParsePrepass(kDefaultPrepass));
     std::vector<PixelDirection> estimated(scene.size());
     for (size_t i : pixels) estimated[i] = estimator->Estimate(scene.Pixel(i), HashCombine(1, i));

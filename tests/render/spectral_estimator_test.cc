@@ -60,12 +60,12 @@ std::vector<size_t> CleanEdgePixels(const Scene& s, const std::vector<PixelDirec
 }
 
 TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256) {
-  EXPECT_EQ(AutoPrepass(16), "edges16");
-  EXPECT_EQ(AutoPrepass(64), "edges16");
-  EXPECT_EQ(AutoPrepass(256), "edges64");
-  EXPECT_EQ(AutoPrepass(1000), "edges250");
-  EXPECT_EQ(AutoPrepass(1024), "edges256");
-  EXPECT_EQ(AutoPrepass(65536), "edges256");
+  EXPECT_EQ(AutoPrepass(16), "nedges16");
+  EXPECT_EQ(AutoPrepass(64), "nedges16");
+  EXPECT_EQ(AutoPrepass(256), "nedges64");
+  EXPECT_EQ(AutoPrepass(1000), "nedges250");
+  EXPECT_EQ(AutoPrepass(1024), "nedges256");
+  EXPECT_EQ(AutoPrepass(65536), "nedges256");
   for (uint32_t n : {1u, 16u, 256u, 4096u}) {
     auto p = ParsePrepass(AutoPrepass(n));
     ASSERT_TRUE(p.ok()) << n;
