@@ -128,8 +128,8 @@ void AddRenderCommand(CLI::App& app) {
       ->check(FiniteIn(1e-6, 1.0));
   c->add_option("--prepass", o->request.prepass,
                  "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
-                 "auto (edgesM, M a quarter of N from 16 to 256), gridG, jgridG, samplesM, edgesM or nedgesM\n"
-                 "(edgesM pooled with the neighbouring pixels' samples),\n"
+                 "auto (nedgesM, M a quarter of N from 16 to 256), gridG, jgridG, samplesM, edgesM or\n"
+                 "nedgesM (edgesM pooled with the neighbouring pixels' samples),\n"
                  "optionally cP (a confidence floor of P percent)")
       ->capture_default_str();
   c->add_option("--reuse-prepass", o->reuse,

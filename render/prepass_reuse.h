@@ -61,10 +61,12 @@ double WithPrepass(const PixelDirection& d, double estimate, uint32_t n);
 // pre-pass, and the continued points are not independent of it (they fill
 // the strata it left), so on a pixel where the pre-pass finds an edge in
 // some draws and not in others the estimate has a selection bias. It is
-// consistent (the bias falls with N) and measured small: 1-7% of the
+// consistent (the bias falls with N) and measured small: 2-8% of the
 // estimate's RMS error on such borderline pixels of both scenes at N = 256
-// and 1024 (a squared bias under 0.5% of the MSE; the test holds it under a
-// fifth, tests/render/prepass_reuse_test.cc). A pixel whose branch never
+// and 1024, with the pixel's own fit deciding (edges64, edges256; a squared
+// bias under 1% of the MSE; the test holds it under a fifth,
+// tests/render/prepass_reuse_test.cc). The pooled pre-pass (nedgesM) also
+// reads the neighbours' independent samples, which only weakens the link. A pixel whose branch never
 // changes (a smooth pixel, a clear edge) keeps an unbiased estimate.
 // kUnbiased (`--reuse-prepass unbiased`) keeps the count weights on every
 // pixel.

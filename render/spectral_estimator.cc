@@ -115,7 +115,8 @@ class SpectralEstimator : public DirectionEstimator {
     lines_.second = true;
   }
   std::string name() const override {
-    const bool lines = p_.kind == Prepass::Kind::kEdgeLines || p_.kind == Prepass::Kind::kPooledEdgeLines;
+    const bool lines =
+        p_.kind == Prepass::Kind::kEdgeLines || p_.kind == Prepass::Kind::kPooledEdgeLines;
     return std::string(lines ? "core/analysis EstimateEdgeLines, " : "core/analysis EstimateDirection, ") +
            p_.Name();
   }
@@ -133,7 +134,9 @@ class SpectralEstimator : public DirectionEstimator {
   int64_t refusals() const override { return refused_.load(); }
 
   std::vector<PixelDirection> EstimateScene(const Scene& scene, uint64_t seed, int threads) const override {
-    if (p_.kind != Prepass::Kind::kPooledEdgeLines) return DirectionEstimator::EstimateScene(scene, seed, threads);
+    if (p_.kind != Prepass::Kind::kPooledEdgeLines) {
+      return DirectionEstimator::EstimateScene(scene, seed, threads);
+    }
     // Pass 1: every pixel's own pre-pass and its own fit.
     std::vector<SampledPatch> own(scene.size());
     std::vector<PixelDirection> out(scene.size());
