@@ -6,6 +6,7 @@
 // direction" counts as a 90° error in the percentiles and in the "none"
 // column.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -334,6 +335,22 @@ int main(int argc, char** argv) {
       const Stats s = RunEstimator(cases, lines(make), false, Theta);
       Row("step, " + std::to_string(m) + (sobol ? " Owen-Sobol" : " random") + " samples", s.errors, s.none);
     }
+    if (m == 4096) continue;
+    // The renderer's nedgesM: the step continues across a 3 x 3 block of
+    // pixels, each with its own M Owen-Sobol samples, read together.
+    const Estimator pooled = [m, owen](const Case& c) {
+      const Integrand2 step = Step(c);
+      std::array<SampledPatch, 9> block;
+      std::array<const SampledPatch*, 9> ptrs{};
+      for (int k = 0; k < 9; ++k) {
+        const double dx = k % 3 - 1, dy = k / 3 - 1;
+        block[k] = owen([&](const Point2& p) { return step({p.x + dx, p.y + dy}); }, m, HashCombine(c.seed, k));
+        ptrs[k] = &block[k];
+      }
+      return EstimateEdgeLinesPooled(ptrs, 0.5);
+    };
+    const Stats s = RunEstimator(cases, pooled, false, Theta);
+    Row("step, " + std::to_string(m) + " Owen-Sobol a pixel, with neighbours", s.errors, s.none);
   }
   for (int m : {256, 1024}) {
     auto other = [](const Case& c) { return ReduceDirection(c.theta + 30.0 + 90.0 * c.u); };

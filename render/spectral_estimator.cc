@@ -1,8 +1,8 @@
 #include "render/spectral_estimator.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
-#include <cmath>
 #include <cstdlib>
 
 #include "core/analysis/direction_estimate.h"
@@ -145,35 +145,18 @@ class SpectralEstimator : public DirectionEstimator {
       own[i] = Sample(scene.Pixel(i), h);
       out[i] = Finish(Fit(own[i]), Mean(own[i].values), h);
     });
-    // Pass 2: the pixel and its neighbours within kMargin, scaled onto the
-    // unit square, and only lines that cross the pixel.
-    constexpr double kMargin = 0.5, kSide = 1.0 + 2.0 * kMargin, kAgreeDeg = 8.0;
-    EdgeLineOptions pooled = lines_;
-    pooled.focus = true;
-    // The pixel, less a sample spacing on each side: a crossing's midpoint
-    // between a sample inside and one in the neighbour can lie inside the
-    // pixel though the edge does not (smooth pixels beside an edge got
-    // lattices, 13x Owen-Sobol's error, with half a spacing).
-    const double shrink = 1.0 / std::sqrt(static_cast<double>(p_.count));
-    pooled.focus_x0 = pooled.focus_y0 = (kMargin + shrink) / kSide;
-    pooled.focus_x1 = pooled.focus_y1 = (1.0 + kMargin - shrink) / kSide;
+    // Pass 2: the pixel and its neighbours within half a pixel, lines that
+    // cross the pixel (core/analysis/edge_line_fit.h).
+    constexpr double kMargin = 0.5, kAgreeDeg = 8.0;
     const int w = scene.width(), hgt = scene.height();
     ParallelFor(scene.size(), threads, [&](size_t i) {
       const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-      SampledPatch s;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          if (x + dx < 0 || x + dx >= w || y + dy < 0 || y + dy >= hgt) continue;
-          const size_t j = static_cast<size_t>(y + dy) * w + (x + dx);
-          for (size_t k = 0; k < own[j].points.size(); ++k) {
-            const double u = own[j].points[k].x + dx, v = own[j].points[k].y + dy;
-            if (u < -kMargin || u > 1.0 + kMargin || v < -kMargin || v > 1.0 + kMargin) continue;
-            s.points.push_back({(u + kMargin) / kSide, (v + kMargin) / kSide});
-            s.values.push_back(own[j].values[k]);
-          }
-        }
+      std::array<const SampledPatch*, 9> block{};
+      for (int k = 0; k < 9; ++k) {
+        const int u = x + k % 3 - 1, v = y + k / 3 - 1;
+        if (u >= 0 && u < w && v >= 0 && v < hgt) block[k] = &own[static_cast<size_t>(v) * w + u];
       }
-      const StatusOr<DirectionEstimate> e = EstimateEdgeLines(s, pooled);
+      const StatusOr<DirectionEstimate> e = EstimateEdgeLinesPooled(block, kMargin, lines_);
       if (!e.ok()) {
         refused_.fetch_add(1, std::memory_order_relaxed);
         return;

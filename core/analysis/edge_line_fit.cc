@@ -246,4 +246,33 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const E
   return out;
 }
 
+StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
+                                                    double margin, const EdgeLineOptions& options) {
+  const SampledPatch* centre = pixels[4];
+  if (!centre || centre->points.empty()) return Status::InvalidArgument("pooled edge lines: no centre pixel");
+  if (!(margin > 0.0 && margin <= 1.0)) return Status::InvalidArgument("pooled edge lines: margin must be in (0, 1]");
+  const double side = 1.0 + 2.0 * margin;
+  SampledPatch pooled;
+  for (int k = 0; k < 9; ++k) {
+    const SampledPatch* p = pixels[k];
+    if (!p) continue;
+    if (p->values.size() != p->points.size()) {
+      return Status::InvalidArgument("pooled edge lines: a patch's values do not match its points");
+    }
+    const int dx = k % 3 - 1, dy = k / 3 - 1;
+    for (size_t j = 0; j < p->points.size(); ++j) {
+      const double u = p->points[j].x + dx, v = p->points[j].y + dy;
+      if (u < -margin || u > 1.0 + margin || v < -margin || v > 1.0 + margin) continue;
+      pooled.points.push_back({(u + margin) / side, (v + margin) / side});
+      pooled.values.push_back(p->values[j]);
+    }
+  }
+  EdgeLineOptions o = options;
+  o.focus = true;
+  const double inset = 1.0 / std::sqrt(static_cast<double>(centre->points.size()));
+  o.focus_x0 = o.focus_y0 = (margin + inset) / side;
+  o.focus_x1 = o.focus_y1 = (1.0 + margin - inset) / side;
+  return EstimateEdgeLines(pooled, o);
+}
+
 }  // namespace alignset

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 #include "core/analysis/direction_estimate.h"
 #include "core/analysis/patch_spectrum.h"
 #include "core/util/status.h"
@@ -54,5 +56,20 @@ struct EdgeLineOptions {
 // (the spectral convention), kappa is 0 (no fit of a distribution).
 StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch,
                                               const EdgeLineOptions& options = {});
+
+// A pixel's fit from its own samples and its neighbours' (the renderer's
+// nedgesM pre-pass): an edge runs on into the next pixel, so its line is
+// better placed by the crossings on either side. `pixels` holds the 3 x 3
+// block row by row, the centre at [4], each patch in its own pixel's
+// [0,1]^2 (nullptr where the image ends); the samples within `margin`
+// pixel widths of the centre pixel are scaled onto the unit square, and
+// the options gain a focus box on the centre pixel inset by a sample
+// spacing (1/sqrt(M) for M samples per pixel): a crossing's midpoint
+// between a sample inside and one in the neighbour can lie inside the pixel
+// though the edge does not, and without the inset smooth pixels beside an
+// edge were given directions. INVALID_ARGUMENT for a missing centre, a
+// margin outside (0, 1] or what EstimateEdgeLines refuses.
+StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
+                                                    double margin, const EdgeLineOptions& options = {});
 
 }  // namespace alignset
