@@ -137,44 +137,64 @@ class SpectralEstimator : public DirectionEstimator {
     if (p_.kind != Prepass::Kind::kPooledEdgeLines) {
       return DirectionEstimator::EstimateScene(scene, seed, threads);
     }
-    // Pass 1: every pixel's own pre-pass and its own fit.
-    std::vector<SampledPatch> own(scene.size());
-    std::vector<PixelDirection> out(scene.size());
-    ParallelFor(scene.size(), threads, [&](size_t i) {
-      const uint64_t h = HashCombine(seed, i);
-      own[i] = Sample(scene.Pixel(i), h);
-      out[i] = Finish(Fit(own[i]), Mean(own[i].values), h);
-    });
-    // Pass 2: the pixel and its neighbours within half a pixel, lines that
-    // cross the pixel (core/analysis/edge_line_fit.h).
+    // Row by row, keeping the pre-passes of three rows only (y - 1, y and
+    // y + 1: what the fit reads), so that memory stays a few rows of M
+    // samples however large the image: rows[k] holds row y - 1 + k, empty
+    // beyond the image.
     constexpr double kMargin = 0.5, kAgreeDeg = 8.0;
     const int w = scene.width(), hgt = scene.height();
-    ParallelFor(scene.size(), threads, [&](size_t i) {
-      const int x = static_cast<int>(i % w), y = static_cast<int>(i / w);
-      std::array<const SampledPatch*, 9> block{};
-      for (int k = 0; k < 9; ++k) {
-        const int u = x + k % 3 - 1, v = y + k / 3 - 1;
-        if (u >= 0 && u < w && v >= 0 && v < hgt) block[k] = &own[static_cast<size_t>(v) * w + u];
+    std::vector<PixelDirection> out(scene.size());
+    std::array<std::vector<SampledPatch>, 3> rows;
+    // Every pixel's own pre-pass and its own fit.
+    auto sample_row = [&](int y, std::vector<SampledPatch>& row) {
+      row.assign(static_cast<size_t>(w), SampledPatch{});
+      ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
+        const size_t i = static_cast<size_t>(y) * w + x;
+        const uint64_t h = HashCombine(seed, i);
+        row[x] = Sample(scene.Pixel(i), h);
+        out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
+      });
+    };
+    sample_row(0, rows[1]);
+    for (int y = 0; y < hgt; ++y) {
+      if (y + 1 < hgt) {
+        sample_row(y + 1, rows[2]);
+      } else {
+        rows[2].clear();
       }
-      const StatusOr<DirectionEstimate> e = EstimateEdgeLinesPooled(block, kMargin, lines_);
-      if (!e.ok()) {
-        refused_.fetch_add(1, std::memory_order_relaxed);
-        return;
-      }
-      PixelDirection d = FromEstimate(*e, p_.min_confidence_pct);
-      if (d.kind == PixelDirection::Kind::kNone) return;  // the pixel's own fit stands
-      // Where the two disagree the pixel's own fit stands: on the soft
-      // shadows, edges curve and crowd within a pixel or two, and an
-      // unchecked pooled line made the directions worse there.
-      if (out[i].kind != PixelDirection::Kind::kNone &&
-          AxialDistanceDeg(d.theta1, out[i].theta1) > kAgreeDeg) {
-        return;
-      }
-      d.prepass_mean = out[i].prepass_mean;
-      d.prepass_samples = out[i].prepass_samples;
-      d.prepass_seed = out[i].prepass_seed;
-      out[i] = d;
-    });
+      // The pixel and its neighbours within half a pixel, lines that cross
+      // the pixel (core/analysis/edge_line_fit.h).
+      ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
+        const size_t i = static_cast<size_t>(y) * w + x;
+        std::array<const SampledPatch*, 9> block{};
+        for (int k = 0; k < 9; ++k) {
+          const std::vector<SampledPatch>& row = rows[k / 3];
+          const int u = static_cast<int>(x) + k % 3 - 1;
+          if (!row.empty() && u >= 0 && u < w) block[k] = &row[u];
+        }
+        const StatusOr<DirectionEstimate> e = EstimateEdgeLinesPooled(block, kMargin, lines_);
+        if (!e.ok()) {
+          refused_.fetch_add(1, std::memory_order_relaxed);
+          return;
+        }
+        PixelDirection d = FromEstimate(*e, p_.min_confidence_pct);
+        if (d.kind == PixelDirection::Kind::kNone) return;  // the pixel's own fit stands
+        // Where the two disagree the pixel's own fit stands: on the soft
+        // shadows, edges curve and crowd within a pixel or two, and an
+        // unchecked pooled line made the directions worse there.
+        if (out[i].kind != PixelDirection::Kind::kNone &&
+            AxialDistanceDeg(d.theta1, out[i].theta1) > kAgreeDeg) {
+          return;
+        }
+        d.prepass_mean = out[i].prepass_mean;
+        d.prepass_samples = out[i].prepass_samples;
+        d.prepass_seed = out[i].prepass_seed;
+        out[i] = d;
+      });
+      rows[0] = std::move(rows[1]);
+      rows[1] = std::move(rows[2]);
+      rows[2] = {};
+    }
     return out;
   }
 
