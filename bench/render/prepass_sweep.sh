@@ -22,13 +22,12 @@ mkdir -p "$RAW"
 start_render_server
 for seed in $SEEDS; do
   for m in $MS; do
-    common=(--server "$ADDR" --threads 2 --seed "$seed" --line-rates 0 --alt-prepass "" --compare-prepass ""
-            --image-n "" --two-max-n 1024 --prepass "edges$m")
+    common=(--two-max-n 1024 --prepass "edges$m")
     for w in $WINDOWS; do
-      "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/s$seed-m$m-w$w" --n "$N" \
+      seed_render_bench "$seed" "${common[@]}" --out "$RAW/s$seed-m$m-w$w" --n "$N" \
         --samplers owen-sobol,aligned-lattice+reuse --lattice-window "$w"
     done
-    "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/s$seed-m$m-counted" --n $((N + m)) \
+    seed_render_bench "$seed" "${common[@]}" --out "$RAW/s$seed-m$m-counted" --n $((N + m)) \
       --samplers owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1
   done
 done

@@ -6,6 +6,10 @@
 #     free loopback port over the benchmarks' shared cache
 #     ($BUILD_DIR/render-cache/cache.sqlite, so sets filled by one run serve
 #     the next); sets ADDR and stops the server when the script exits.
+#   seed_render_bench SEED ARG...
+#     render_bench against that server for one scene seed, with only the
+#     renders ARG asks for (no line rates, no alternative or compared
+#     pre-passes, no extra image N), on THREADS threads (default 2).
 #   default_prepass
 #     prints the renderer's default pre-pass (kDefaultPrepass in
 #     render/spectral_estimator.h).
@@ -18,6 +22,13 @@ start_render_server() {
   trap stop_loopback_server EXIT
   start_loopback_server 30 "$BUILD_DIR/render-cache/server.log" "$BUILD_DIR/server/alignset-server" \
     --db "$BUILD_DIR/render-cache/cache.sqlite" --workers 2 --threads-per-worker 1 --log-level warn
+}
+
+seed_render_bench() {
+  local seed="$1"
+  shift
+  "$BUILD_DIR/bench/render/render_bench" --server "$ADDR" --threads "${THREADS:-2}" --seed "$seed" \
+    --line-rates 0 --alt-prepass "" --compare-prepass "" --image-n "" "$@"
 }
 
 default_prepass() {

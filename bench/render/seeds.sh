@@ -35,9 +35,8 @@ start_render_server
 echo "seeds: alignset-server on $ADDR"
 
 for seed in $SEEDS; do
-  common=(--server "$ADDR" --threads "$THREADS" --seed "$seed" --line-rates 0 --alt-prepass ""
-          --compare-prepass "" --image-n "" --two-max-n "$TWO_MAX_N" --prepass "$PREPASS")
-  "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed" --n "$N" \
+  common=(--two-max-n "$TWO_MAX_N" --prepass "$PREPASS")
+  seed_render_bench "$seed" "${common[@]}" --out "$RAW/seed$seed" --n "$N" \
     --samplers "$SAMPLERS"
   counted_n=$(/usr/bin/python3 -c "
 import csv, sys
@@ -45,7 +44,7 @@ evals = {int(r['evaluations']) for r in csv.DictReader(open(sys.argv[1]))}
 assert len(evals) == 1, evals
 p = evals.pop()
 print(','.join(str(int(n) + p) for n in sys.argv[2].split(',')))" "$RAW/seed$seed/estimator.csv" "$N")
-  "$BUILD_DIR/bench/render/render_bench" "${common[@]}" --out "$RAW/seed$seed-counted" \
+  seed_render_bench "$seed" "${common[@]}" --out "$RAW/seed$seed-counted" \
     --n "$counted_n" --samplers "$COUNTED"
 done
 /usr/bin/python3 bench/render/seed_table.py --raw "$RAW" --seeds "$SEEDS" --n "$N" --out "$OUT"

@@ -25,9 +25,8 @@ mkdir -p "$RAW"
 start_render_server
 echo "split: alignset-server on $ADDR, pre-pass $PREPASS"
 for seed in $SEEDS; do
-  "$BUILD_DIR/bench/render/render_bench" --server "$ADDR" --threads "$THREADS" --seed "$seed" \
-    --line-rates 0 --alt-prepass "" --compare-prepass "" --image-n "" --two-max-n "$TWO_MAX_N" \
-    --prepass "$PREPASS" --out "$RAW/seed$seed" --n "$N" --samplers "$SAMPLERS"
+  seed_render_bench "$seed" --two-max-n "$TWO_MAX_N" --prepass "$PREPASS" --out "$RAW/seed$seed" \
+    --n "$N" --samplers "$SAMPLERS"
 done
 /usr/bin/python3 bench/render/error_split.py --raw "$RAW" --seeds "$SEEDS" --n "$N" --out "$OUT" \
   --figure "$FIGURE"
