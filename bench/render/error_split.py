@@ -22,27 +22,17 @@ The causes are a ladder of samplers on the same pixels, each removing one:
 """
 import argparse
 import csv
-import math
 import os
 import sys
 
 import numpy as np
 
+from ratios import fmt, gmean
+
 TYPES = ["straight", "parallel", "curved", "corner"]
 SHAPE_CODE = {"straight": 1, "parallel": 2, "curved": 3, "corner": 4}  # render/pixel_shape.h
 LADDER = ["owen-sobol", "aligned", "aligned-exact", "aligned-exact-1dir", "aligned-exact-noshift",
           "aligned-lattice", "aligned-lattice-exact"]
-
-
-def gmean(xs):
-    xs = [x for x in xs if x > 0 and math.isfinite(x)]
-    return math.exp(sum(math.log(x) for x in xs) / len(xs)) if xs else float("nan")
-
-
-def fmt(x):
-    if not math.isfinite(x):
-        return "—"
-    return "%.2f" % x if x >= 0.1 else "%.2g" % x
 
 
 def main():

@@ -8,8 +8,9 @@ over aligned-lattice+reuse's at N (geometric mean over the seeds, range).
 """
 import argparse
 import csv
-import math
 import os
+
+from ratios import ratio_text
 
 BASELINES = ("owen-sobol", "pmj02bn", "rank1-lattice", "screen-space-rank1")
 
@@ -17,11 +18,6 @@ BASELINES = ("owen-sobol", "pmj02bn", "rank1-lattice", "screen-space-rank1")
 def edge_mse(path, scene):
     with open(path) as f:
         return {r["sampler"]: float(r["mse_edge"]) for r in csv.DictReader(f) if r["scene"] == scene}
-
-
-def summary(xs):
-    g = math.exp(sum(math.log(x) for x in xs) / len(xs))
-    return "%.2f (%.2f–%.2f)" % (g, min(xs), max(xs))
 
 
 def main():
@@ -51,8 +47,8 @@ def main():
                                     scene)
                     r_os.append(base["owen-sobol"] / lat)
                     r_best.append(min(base[b] for b in BASELINES) / lat)
-                out.append("| %s | %d | %s | %s | %s |" % (m, int(a.n) + int(m), w, summary(r_os),
-                                                           summary(r_best)))
+                out.append("| %s | %d | %s | %s | %s |" % (m, int(a.n) + int(m), w, ratio_text(r_os),
+                                                           ratio_text(r_best)))
     with open(a.out, "w") as f:
         f.write("\n".join(out) + "\n")
     print("\n".join(out))

@@ -12,9 +12,10 @@ estimator.csv (render_bench's record of the estimator it ran).
 """
 import argparse
 import csv
-import math
 import os
 import sys
+
+from ratios import ratio_text
 
 # The samplers that read an estimated direction pay for its pre-pass; a
 # "+reuse" or "+unbiased" variant folds the pre-pass into its estimate and
@@ -32,22 +33,6 @@ def read(path):
         for r in csv.DictReader(f):
             rows[(r["scene"], r["sampler"], int(r["n"]))] = r
     return rows
-
-
-def gmean(xs):
-    return math.exp(sum(math.log(x) for x in xs) / len(xs))
-
-
-def fmt(x):
-    return "%.2f" % x if x >= 0.1 else "%.2g" % x
-
-
-def ratio_text(xs):
-    if not xs:
-        return "—"
-    if len(xs) == 1:
-        return fmt(xs[0])
-    return "%s (%s–%s)" % (fmt(gmean(xs)), fmt(min(xs)), fmt(max(xs)))
 
 
 def main():
