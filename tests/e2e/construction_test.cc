@@ -26,6 +26,7 @@
 #include "core/sampling/rank1_lattice.h"
 #include "tests/e2e/e2e_util.h"
 #include "tests/e2e/server_process.h"
+#include "tests/net_intervals.h"
 
 namespace alignset::e2e {
 namespace {
@@ -466,26 +467,6 @@ TEST(Constructions, CliGetAndPrecomputeTakeConstruction) {
 // elementary interval counted), its own profile, a hit the second time with
 // the same bytes, the mirrored direction its aligned image; an N that is not
 // a power of two is INVALID_ARGUMENT and the server keeps serving.
-bool IsNetAtEveryPowerOfTwo(const PointSet& p, std::string* why) {
-  for (uint32_t size = 1; size <= p.size(); size *= 2) {
-    int j = 0;
-    while ((1u << j) < size) ++j;
-    for (int k = 0; k <= j; ++k) {
-      std::vector<int> count(size, 0);
-      for (uint32_t i = 0; i < size; ++i) {
-        const uint32_t a = std::min<uint32_t>((1u << k) - 1, static_cast<uint32_t>(p[i].x * (1u << k)));
-        const uint32_t b = std::min<uint32_t>((1u << (j - k)) - 1, static_cast<uint32_t>(p[i].y * (1u << (j - k))));
-        if (++count[(a << (j - k)) | b] > 1) {
-          *why = std::to_string(size) + " points: two in an interval 2^-" + std::to_string(k) + " x 2^-" +
-                 std::to_string(j - k);
-          return false;
-        }
-      }
-    }
-  }
-  return true;
-}
-
 TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
   TempDir dir;
   ServerProcess server(dir.path(), kFlags);
@@ -496,8 +477,7 @@ TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
   EXPECT_EQ(first.info.engine, "net");
   EXPECT_EQ(first.info.profile, "net-v1-w1");
   EXPECT_FALSE(first.info.from_cache);
-  std::string why;
-  EXPECT_TRUE(IsNetAtEveryPowerOfTwo(first.points, &why)) << why;
+  EXPECT_EQ(testing::PrefixNetViolation(first.points), "");
   const AlignedSet again = MustGet(*client, 256, 30.0, "net");
   EXPECT_TRUE(again.info.from_cache);
   ASSERT_EQ(again.points.size(), first.points.size());
@@ -508,7 +488,7 @@ TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
   // 150 degrees is 30 mirrored (x -> 1 - x): the same canonical net.
   const AlignedSet mirrored = MustGet(*client, 256, 150.0, "net");
   EXPECT_TRUE(mirrored.info.from_cache);
-  EXPECT_TRUE(IsNetAtEveryPowerOfTwo(mirrored.points, &why)) << why;
+  EXPECT_EQ(testing::PrefixNetViolation(mirrored.points), "");
   // An optimized request for the same key is not answered with the net.
   const AlignedSet optimized = MustGet(*client, 256, 30.0, "");
   EXPECT_EQ(optimized.info.construction, "optimized");

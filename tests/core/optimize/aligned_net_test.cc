@@ -11,32 +11,10 @@
 #include "core/sampling/owen_sobol.h"
 #include "core/util/angles.h"
 #include "core/util/hash.h"
+#include "tests/net_intervals.h"
 
 namespace alignset {
 namespace {
-
-// Every elementary interval [a/2^k, (a+1)/2^k) x [b/2^(j-k), (b+1)/2^(j-k))
-// of area 2^-j holds exactly one of the first 2^j points, for every k.
-void ExpectNetAtEveryPowerOfTwo(const PointSet& p, const std::string& what) {
-  for (uint32_t size = 1; size <= p.size(); size *= 2) {
-    int j = 0;
-    while ((1u << j) < size) ++j;
-    for (int k = 0; k <= j; ++k) {
-      std::vector<int> count(size, 0);
-      for (uint32_t i = 0; i < size; ++i) {
-        const uint32_t a = static_cast<uint32_t>(std::floor(p[i].x * (1u << k)));
-        const uint32_t b = static_cast<uint32_t>(std::floor(p[i].y * (1u << (j - k))));
-        ASSERT_LT(a, 1u << k);
-        ASSERT_LT(b, 1u << (j - k));
-        ++count[(a << (j - k)) | b];
-      }
-      for (uint32_t c = 0; c < size; ++c) {
-        ASSERT_EQ(count[c], 1) << what << ": " << size << " points, intervals 2^-" << k << " x 2^-" << j - k
-                               << ", interval " << c;
-      }
-    }
-  }
-}
 
 TEST(AlignedNet, EveryPowerOfTwoPrefixIsANet) {
   for (const std::vector<double>& dirs : {std::vector<double>{30.0}, std::vector<double>{10.0},
@@ -45,7 +23,7 @@ TEST(AlignedNet, EveryPowerOfTwoPrefixIsANet) {
     ASSERT_TRUE(net.ok()) << net.status().message();
     EXPECT_GT(net->flips, 0);
     EXPECT_LT(net->objective, net->start_objective);
-    ExpectNetAtEveryPowerOfTwo(net->points, "theta " + std::to_string(dirs[0]));
+    EXPECT_EQ(testing::PrefixNetViolation(net->points), "") << "theta " << dirs[0];
   }
 }
 

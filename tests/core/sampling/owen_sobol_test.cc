@@ -6,28 +6,14 @@
 #include <set>
 #include <vector>
 
+#include "tests/net_intervals.h"
+
 namespace alignset {
 namespace {
 
-// Every elementary interval [i/2^a, (i+1)/2^a) x [j/2^b, (j+1)/2^b) with
-// a + b = m holds exactly one of 2^m points: the (0,m,2)-net property.
 void ExpectNet(const PointSet& pts, int m) {
-  const uint32_t n = 1u << m;
-  ASSERT_EQ(pts.size(), n);
-  for (int a = 0; a <= m; ++a) {
-    const int b = m - a;
-    std::vector<int> count(n, 0);
-    for (const Point2& p : pts) {
-      const uint32_t i = static_cast<uint32_t>(std::ldexp(p.x, a));
-      const uint32_t j = static_cast<uint32_t>(std::ldexp(p.y, b));
-      ASSERT_LT(i, 1u << a);
-      ASSERT_LT(j, 1u << b);
-      ++count[(i << b) | j];
-    }
-    for (uint32_t c = 0; c < n; ++c) {
-      ASSERT_EQ(count[c], 1) << "m=" << m << " shape 2^-" << a << " x 2^-" << b << " cell " << c;
-    }
-  }
+  ASSERT_EQ(pts.size(), size_t{1} << m);
+  EXPECT_EQ(testing::NetViolation(pts), "");
 }
 
 TEST(OwenSobol, EveryPowerOfTwoIsANetForSeveralSeeds) {
