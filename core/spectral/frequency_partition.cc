@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <tuple>
 #include <unordered_set>
 
 #include "core/util/angles.h"
@@ -174,27 +176,37 @@ Candidate PartitionAt(const std::vector<Frequency>& k, const AngleOrder& order, 
     Evaluate(&g, cost);
   }
 
-  // Greedy merging of neighbours (cyclically) while it pays.
+  // Greedy merging of neighbours (cyclically) while it pays. A merge only
+  // changes the two pairs next to it, so every other pair's merged group is
+  // kept from the rounds before (by the ids of its two groups), which makes
+  // the merging linear in the groups instead of quadratic.
+  std::vector<uint32_t> ids(groups.size());
+  std::iota(ids.begin(), ids.end(), 0u);
+  uint32_t next_id = static_cast<uint32_t>(groups.size());
+  std::map<std::tuple<uint32_t, uint32_t, bool>, Group> merged_of;
   while (groups.size() >= 2) {
     double best_delta = 0.0;
     size_t best_i = 0;
-    Group best_group;
+    const Group* best_group = nullptr;
     const size_t pairs = groups.size() == 2 ? 1 : groups.size();
     for (size_t i = 0; i < pairs; ++i) {
       const size_t j = (i + 1) % groups.size();
-      const double shift = j == 0 ? kPi : 0.0;
-      Group merged = Merge(groups[i], groups[j], shift, k, cost);
-      const double delta = merged.cost - groups[i].cost - groups[j].cost;
+      const bool wraps = j == 0;
+      auto [it, fresh] = merged_of.try_emplace({ids[i], ids[j], wraps});
+      if (fresh) it->second = Merge(groups[i], groups[j], wraps ? kPi : 0.0, k, cost);
+      const double delta = it->second.cost - groups[i].cost - groups[j].cost;
       if (delta < best_delta) {
         best_delta = delta;
         best_i = i;
-        best_group = std::move(merged);
+        best_group = &it->second;
       }
     }
     if (best_delta >= 0.0) break;
     const size_t j = (best_i + 1) % groups.size();
-    groups[best_i] = std::move(best_group);
+    groups[best_i] = *best_group;
+    ids[best_i] = next_id++;
     groups.erase(groups.begin() + static_cast<std::ptrdiff_t>(j));
+    ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(j));
   }
   for (Group& g : groups) {
     FrequencyPiece piece;

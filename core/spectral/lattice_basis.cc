@@ -48,6 +48,40 @@ double PolygonArea(const std::vector<Frequency>& poly) {
   return 0.5 * std::abs(s);
 }
 
+// A candidate first basis vector p (primitive, p2 > 0 or p2 = 0 < p1), its
+// angle and a q completing it (p1 q2 - p2 q1 = 1).
+struct PrimitiveVector {
+  int64_t p1, p2, q1, q2;
+  double angle;
+};
+
+// Every candidate with max(|p1|, |p2|) <= max_component, p2 ascending, then
+// p1 ascending: the order decides ties, so it is fixed.
+std::vector<PrimitiveVector> PrimitiveVectors(int max_component) {
+  std::vector<PrimitiveVector> out;
+  for (int64_t p2 = 0; p2 <= max_component; ++p2) {
+    for (int64_t p1 = -max_component; p1 <= max_component; ++p1) {
+      if (!(p2 > 0 || p1 > 0)) continue;
+      if (std::gcd(p1, p2) != 1) continue;
+      int64_t x, y;
+      ExtendedGcd(p1, p2, &x, &y);
+      out.push_back({p1, p2, -y, x,
+                     std::atan2(static_cast<double>(p2), static_cast<double>(p1))});
+    }
+  }
+  return out;
+}
+
+// The frequency partition asks for the best basis hundreds of times per
+// frequency set, once per key the server fills; the gcds and angles of the
+// candidates are the same every time (and were most of that cost).
+constexpr int kTabledComponent = 64;
+
+const std::vector<PrimitiveVector>& TabledPrimitiveVectors() {
+  static const std::vector<PrimitiveVector> table = PrimitiveVectors(kTabledComponent);
+  return table;
+}
+
 }  // namespace
 
 std::vector<Frequency> ConvexHull(std::vector<Frequency> pts) {
@@ -90,54 +124,50 @@ BasisBox BestBasis(const std::vector<Frequency>& hull, double angle_lo, double a
   // before the search for the shear.
   const double area = PolygonArea(hull);
   std::vector<int64_t> w1(hull.size()), w2(hull.size());
-  for (int64_t p2 = 0; p2 <= max_component; ++p2) {
-    for (int64_t p1 = -max_component; p1 <= max_component; ++p1) {
-      if (!(p2 > 0 || p1 > 0)) continue;
-      if (std::gcd(p1, p2) != 1) continue;
-      const double angle = std::atan2(static_cast<double>(p2), static_cast<double>(p1));
-      if (!InWindow(angle, angle_lo - margin, angle_hi + margin)) continue;
-      // q with p1 q2 - p2 q1 = 1.
-      int64_t x, y;
-      ExtendedGcd(p1, p2, &x, &y);
-      LatticeBasis b{p1, p2, -y, x};
-      int64_t m2 = 0, w1max = 0;
-      for (size_t i = 0; i < hull.size(); ++i) {
-        w1[i] = b.W1(hull[i].a, hull[i].b);
-        w2[i] = b.W2(hull[i].a, hull[i].b);
-        m2 = std::max(m2, std::abs(w2[i]));
-        w1max = std::max(w1max, std::abs(w1[i]));
-      }
-      if (m2 > 0) {
-        const auto m1_floor = static_cast<int64_t>(std::ceil(area / (4.0 * m2)));
-        if (cost(m1_floor, m2) >= best_cost) continue;
-      }
-      // Shearing q -> q + k p maps w1 -> w1 - k w2; m1(k) is convex in k.
-      auto m1_of = [&](int64_t k) {
-        int64_t m = 0;
-        for (size_t i = 0; i < hull.size(); ++i) m = std::max(m, std::abs(w1[i] - k * w2[i]));
-        return m;
-      };
-      int64_t k_best = 0;
-      if (m2 > 0) {
-        int64_t lo = -w1max - 1, hi = w1max + 1;  // the minimum lies inside
-        while (lo < hi) {
-          const int64_t mid = lo + (hi - lo) / 2;
-          if (m1_of(mid + 1) - m1_of(mid) >= 0) {
-            hi = mid;
-          } else {
-            lo = mid + 1;
-          }
+  const std::vector<PrimitiveVector>& table = max_component <= kTabledComponent
+                                                  ? TabledPrimitiveVectors()
+                                                  : PrimitiveVectors(max_component);
+  for (const PrimitiveVector& cand : table) {
+    if (std::max(std::abs(cand.p1), cand.p2) > max_component) continue;
+    if (!InWindow(cand.angle, angle_lo - margin, angle_hi + margin)) continue;
+    const LatticeBasis b{cand.p1, cand.p2, cand.q1, cand.q2};
+    int64_t m2 = 0, w1max = 0;
+    for (size_t i = 0; i < hull.size(); ++i) {
+      w1[i] = b.W1(hull[i].a, hull[i].b);
+      w2[i] = b.W2(hull[i].a, hull[i].b);
+      m2 = std::max(m2, std::abs(w2[i]));
+      w1max = std::max(w1max, std::abs(w1[i]));
+    }
+    if (m2 > 0) {
+      const auto m1_floor = static_cast<int64_t>(std::ceil(area / (4.0 * m2)));
+      if (cost(m1_floor, m2) >= best_cost) continue;
+    }
+    // Shearing q -> q + k p maps w1 -> w1 - k w2; m1(k) is convex in k.
+    auto m1_of = [&](int64_t k) {
+      int64_t m = 0;
+      for (size_t i = 0; i < hull.size(); ++i) m = std::max(m, std::abs(w1[i] - k * w2[i]));
+      return m;
+    };
+    int64_t k_best = 0;
+    if (m2 > 0) {
+      int64_t lo = -w1max - 1, hi = w1max + 1;  // the minimum lies inside
+      while (lo < hi) {
+        const int64_t mid = lo + (hi - lo) / 2;
+        if (m1_of(mid + 1) - m1_of(mid) >= 0) {
+          hi = mid;
+        } else {
+          lo = mid + 1;
         }
-        k_best = lo;
       }
-      const int64_t m1 = m1_of(k_best);
-      const double c = cost(m1, m2);
-      if (c < best_cost) {
-        best_cost = c;
-        best.basis = {p1, p2, b.q1 + k_best * p1, b.q2 + k_best * p2};
-        best.m1 = m1;
-        best.m2 = m2;
-      }
+      k_best = lo;
+    }
+    const int64_t m1 = m1_of(k_best);
+    const double c = cost(m1, m2);
+    if (c < best_cost) {
+      best_cost = c;
+      best.basis = {cand.p1, cand.p2, b.q1 + k_best * cand.p1, b.q2 + k_best * cand.p2};
+      best.m1 = m1;
+      best.m2 = m2;
     }
   }
   return best;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -94,6 +95,87 @@ TEST(LatticeBasisTest, ObliqueStripBecomesThin) {
   }
   EXPECT_LT(cells(best.m1, best.m2), 2.5 * static_cast<double>(sym.size()));
   EXPECT_LT(cells(best.m1, best.m2), 0.1 * cells(identity.m1, identity.m2));
+}
+
+// BestBasis reads its candidates from a table and finds the shear by
+// bisection; the reference tries every primitive p in the window in the
+// same order and every shear, so ties must fall the same way too.
+TEST(LatticeBasisTest, BestBasisEqualsAnExhaustiveSearch) {
+  std::mt19937 rng(7);
+  auto cost = [](int64_t m1, int64_t m2) {
+    const double c = static_cast<double>(2 * m1 + 1) * static_cast<double>(2 * m2 + 1);
+    return 500.0 + c * std::log2(c);
+  };
+  auto reference = [&](const std::vector<Frequency>& hull, double lo, double hi, double margin,
+                       int max_component) {
+    BasisBox best = BoxInBasis(hull, LatticeBasis{});
+    double best_cost = cost(best.m1, best.m2);
+    const double pi = 3.141592653589793;
+    auto in_window = [&](double a) {
+      if (hi - lo + 2 * margin >= pi) return true;
+      while (a < lo - margin) a += pi;
+      while (a - pi >= lo - margin) a -= pi;
+      return a <= hi + margin;
+    };
+    for (int64_t p2 = 0; p2 <= max_component; ++p2) {
+      for (int64_t p1 = -max_component; p1 <= max_component; ++p1) {
+        if (!(p2 > 0 || p1 > 0) || std::gcd(p1, p2) != 1) continue;
+        if (!in_window(std::atan2(static_cast<double>(p2), static_cast<double>(p1)))) continue;
+        // Some q completing p, by search (|q| small suffices for the test).
+        LatticeBasis b;
+        bool found = false;
+        for (int64_t q1 = -max_component; q1 <= max_component && !found; ++q1) {
+          for (int64_t q2 = -max_component; q2 <= max_component && !found; ++q2) {
+            if (p1 * q2 - p2 * q1 == 1) {
+              b = {p1, p2, q1, q2};
+              found = true;
+            }
+          }
+        }
+        if (!found) {
+          ADD_FAILURE() << "no q completes (" << p1 << ", " << p2 << ")";
+          continue;
+        }
+        // Every shear q + k p that could matter; the first minimum.
+        const int64_t reach = 4 * (BoxInBasis(hull, b).m1 + std::abs(b.q1) + std::abs(b.q2)) + 4;
+        BasisBox local = BoxInBasis(hull, {p1, p2, b.q1 - reach * p1, b.q2 - reach * p2});
+        for (int64_t k = -reach + 1; k <= reach; ++k) {
+          const BasisBox box = BoxInBasis(hull, {p1, p2, b.q1 + k * p1, b.q2 + k * p2});
+          if (box.m1 < local.m1) local = box;
+        }
+        if (cost(local.m1, local.m2) < best_cost) {
+          best_cost = cost(local.m1, local.m2);
+          best = local;
+        }
+      }
+    }
+    return std::make_pair(best, best_cost);
+  };
+  std::uniform_int_distribution<int> c(-90, 90);
+  std::uniform_real_distribution<double> angle(0.0, 3.141592653589793);
+  for (int trial = 0; trial < 40; ++trial) {
+    // A thin random strip: points near a line at a random angle.
+    const double t = angle(rng);
+    std::vector<Frequency> pts;
+    for (int i = 0; i < 60; ++i) {
+      const double along = c(rng), across = 0.05 * c(rng);
+      pts.push_back({static_cast<int32_t>(std::lround(along * std::cos(t) - across * std::sin(t))),
+                     static_cast<int32_t>(std::lround(along * std::sin(t) + across * std::cos(t)))});
+      pts.push_back({-pts.back().a, -pts.back().b});
+    }
+    const std::vector<Frequency> hull = ConvexHull(pts);
+    const int max_component = trial % 4 == 3 ? 70 : 40;  // beyond the table too
+    const double lo = t - 0.02, hi = t + 0.01 * (trial % 3);
+    const BasisBox fast = BestBasis(hull, lo, hi, 0.05, max_component, cost);
+    const auto [slow, slow_cost] = reference(hull, lo, hi, 0.05, max_component);
+    ASSERT_EQ(cost(fast.m1, fast.m2), slow_cost) << "trial " << trial;
+    EXPECT_EQ(fast.basis.p1, slow.basis.p1) << "trial " << trial;
+    EXPECT_EQ(fast.basis.p2, slow.basis.p2) << "trial " << trial;
+    EXPECT_EQ(fast.basis.q1, slow.basis.q1) << "trial " << trial;
+    EXPECT_EQ(fast.basis.q2, slow.basis.q2) << "trial " << trial;
+    EXPECT_EQ(fast.m1, slow.m1);
+    EXPECT_EQ(fast.m2, slow.m2);
+  }
 }
 
 TEST(FrequencyPartitionTest, CoversEveryEntryOnceInsideItsBox) {
