@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/util/angles.h"
 #include "core/spectral/frequency_partition.h"
@@ -43,8 +44,7 @@ void FastEngine::SetFrequencies(const std::vector<Frequency>& k) {
 void FastEngine::BuildGrids() {
   grids_.clear();
   grid_of_.assign(k_.size(), 0);
-  w1_of_.assign(k_.size(), 0);
-  w2_of_.assign(k_.size(), 0);
+  local_of_.assign(k_.size(), 0);
   // Cost model of one piece, in rough nanoseconds: spreading and
   // interpolation (3 w^2 multiply-adds per point: one real, one complex
   // pass) plus 2 w kernel values per point, against the FFTs and the grid
@@ -54,9 +54,17 @@ void FastEngine::BuildGrids() {
   const double w = kernel_.width();
   const double per_piece = n_proxy * (3.0 * w * w + 20.0 * w);
   const EsKernel& kernel = kernel_;
+  // The partition prices many thousands of boxes over a few hundred
+  // distinct extents: the grid size of each extent is looked up once.
+  std::vector<int> grid_size;
+  auto size_of = [&](int64_t m) {
+    const size_t i = static_cast<size_t>(m);
+    if (i >= grid_size.size()) grid_size.resize(std::max(i + 1, 2 * grid_size.size()), 0);
+    if (grid_size[i] == 0) grid_size[i] = NufftGridSize(m, kernel);
+    return grid_size[i];
+  };
   auto cost = [&](int64_t m1, int64_t m2) {
-    const double cells = static_cast<double>(NufftGridSize(m1, kernel)) *
-                         static_cast<double>(NufftGridSize(m2, kernel));
+    const double cells = static_cast<double>(size_of(m1)) * static_cast<double>(size_of(m2));
     return per_piece + cells * (2.5 * std::log2(cells) + 6.0);
   };
   std::vector<FrequencyPiece> pieces = PartitionFrequencies(k_, cost);
@@ -73,9 +81,9 @@ void FastEngine::BuildGrids() {
       piece.w1.push_back(static_cast<int32_t>(fp.box.basis.W1(k_[i].a, k_[i].b)));
       piece.w2.push_back(static_cast<int32_t>(fp.box.basis.W2(k_[i].a, k_[i].b)));
       grid_of_[i] = static_cast<uint32_t>(grids_.size());
-      w1_of_[i] = piece.w1.back();
-      w2_of_[i] = piece.w2.back();
+      local_of_[i] = static_cast<uint32_t>(piece.w1.size() - 1);
     }
+    piece.grid->BindModes(piece.w1, piece.w2);
     grids_.push_back(std::move(piece));
   }
 }
@@ -160,7 +168,7 @@ void FastEngine::TypeOne(const PointSet& points, const double* strengths, bool k
   spectrum->resize(nk);
   pool_.ParallelFor(nk, [&](size_t begin, size_t end, int) {
     for (size_t i = begin; i < end; ++i) {
-      (*spectrum)[i] = grids_[grid_of_[i]].grid->Mode(w1_of_[i], w2_of_[i]);
+      (*spectrum)[i] = grids_[grid_of_[i]].grid->Mode(local_of_[i]);
     }
   });
 }
@@ -213,8 +221,7 @@ void FastEngine::Evaluate(const PointSet& points, bool with_gradient, SpectrumEv
             weighted ? weights_[p.members[i]] * out->spectrum[p.members[i]]
                      : out->spectrum[p.members[i]];
         const std::complex<double> dir(v.a, v.b);
-        p.grid->AddCoefficient(p.w1[i], p.w2[i], dir * std::conj(f));
-        p.grid->AddCoefficient(-p.w1[i], -p.w2[i], -dir * f);
+        p.grid->AddCoefficients(i, dir * std::conj(f), -dir * f);
       }
       p.grid->FinishCoefficients();
     }

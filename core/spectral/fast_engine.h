@@ -91,9 +91,10 @@ class FastEngine final : public SpectralEngine {
   std::vector<Frequency> k_;
   std::vector<double> weights_;  // loss weights over K; empty: all 1
   std::vector<Piece> grids_;
-  // Per entry of K: its grid and mode (for the read-out in one loop).
+  // Per entry of K: its grid and its index among that grid's modes (for
+  // the read-out in one loop).
   std::vector<uint32_t> grid_of_;
-  std::vector<int32_t> w1_of_, w2_of_;
+  std::vector<uint32_t> local_of_;
   std::vector<NufftGrid::Scratch> scratch_;           // one per worker
   std::vector<std::vector<std::complex<double>>> sums_;  // type-2 output, per grid
 };

@@ -62,30 +62,59 @@ NufftGrid::NufftGrid(const BasisBox& box, const EsKernel& kernel)
 
   spread_.assign(static_cast<size_t>(n1_ + width_ - 1) * stride_, 0.0);
   gather_.assign(static_cast<size_t>(n1_ + width_ - 1) * stride_, 0.0);
-  const size_t cells = static_cast<size_t>(n1_) * n2_;
+  m2_ = static_cast<int>(box.m2);
+  coef_width_ = 2 * m2_ + 1;
   const size_t half = static_cast<size_t>(n1_) * (n2_ / 2 + 1);
-  fft_real_ = static_cast<double*>(fftw_malloc(sizeof(double) * cells));
   fft_half_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * half));
-  fft_full_ = static_cast<std::complex<double>*>(fftw_malloc(sizeof(fftw_complex) * cells));
+  coef_ = static_cast<std::complex<double>*>(
+      fftw_malloc(sizeof(fftw_complex) * static_cast<size_t>(n1_) * coef_width_));
+  std::fill(coef_, coef_ + static_cast<size_t>(n1_) * coef_width_, std::complex<double>(0.0));
+  mid_ = static_cast<std::complex<double>*>(
+      fftw_malloc(sizeof(fftw_complex) * static_cast<size_t>(n1_) * n2_));
+  std::fill(mid_, mid_ + static_cast<size_t>(n1_) * n2_, std::complex<double>(0.0));
+  auto c = [](std::complex<double>* p) { return reinterpret_cast<fftw_complex*>(p); };
+  const int h = n2_ / 2 + 1;
   std::lock_guard<std::mutex> lock(FftwPlannerLock());
   // FFTW_ESTIMATE: planning does not time anything, so the same sizes give
   // the same algorithm (and the same bits) on every run.
-  plan_r2c_ = fftw_plan_dft_r2c_2d(n1_, n2_, fft_real_,
-                                   reinterpret_cast<fftw_complex*>(fft_half_), FFTW_ESTIMATE);
-  plan_c2c_ = fftw_plan_dft_2d(n1_, n2_, reinterpret_cast<fftw_complex*>(fft_full_),
-                               reinterpret_cast<fftw_complex*>(fft_full_), FFTW_FORWARD,
-                               FFTW_ESTIMATE);
+  //
+  // The 2-D transforms are pruned to the box: the modes read after a type-1
+  // pass are the columns w2 in [0, m2] of the half spectrum, and the
+  // coefficients of a type-2 pass fill only the columns |w2| <= m2, so one
+  // of the two 1-D passes of each runs on about half the columns (the grid
+  // is oversampled twice). Type 1: the rows of the padded spreading grid
+  // (stride apart), real to half complex, then the kept columns in place.
+  plan_rows_r2c_ = fftw_plan_many_dft_r2c(1, &n2_, n1_, spread_.data(), nullptr, 1, stride_,
+                                          c(fft_half_), nullptr, 1, h, FFTW_ESTIMATE);
+  plan_cols_half_ = fftw_plan_many_dft(1, &n1_, m2_ + 1, c(fft_half_), nullptr, h, 1,
+                                       c(fft_half_), nullptr, h, 1, FFTW_FORWARD, FFTW_ESTIMATE);
+  // Type 2: the coefficient columns w2 = 0..m2 and -m2..-1 (stored at
+  // w2 + m2) into the grid's columns 0..m2 and n2 - m2..n2 - 1, then every
+  // row into the padded interpolation grid. Both out of place with the
+  // input kept, so the columns outside the box stay zero and the
+  // coefficients can be cleared where they were written.
+  const unsigned keep = FFTW_ESTIMATE | FFTW_PRESERVE_INPUT;
+  plan_cols_pos_ = fftw_plan_many_dft(1, &n1_, m2_ + 1, c(coef_ + m2_), nullptr, coef_width_, 1,
+                                      c(mid_), nullptr, n2_, 1, FFTW_FORWARD, keep);
+  plan_cols_neg_ =
+      m2_ > 0 ? fftw_plan_many_dft(1, &n1_, m2_, c(coef_), nullptr, coef_width_, 1,
+                                   c(mid_ + (n2_ - m2_)), nullptr, n2_, 1, FFTW_FORWARD, keep)
+              : nullptr;
+  plan_rows_c2c_ = fftw_plan_many_dft(1, &n2_, n1_, c(mid_), nullptr, 1, n2_, c(gather_.data()),
+                                      nullptr, 1, stride_, FFTW_FORWARD, keep);
 }
 
 NufftGrid::~NufftGrid() {
   {
     std::lock_guard<std::mutex> lock(FftwPlannerLock());
-    fftw_destroy_plan(static_cast<fftw_plan>(plan_r2c_));
-    fftw_destroy_plan(static_cast<fftw_plan>(plan_c2c_));
+    for (void* plan :
+         {plan_rows_r2c_, plan_cols_half_, plan_cols_pos_, plan_cols_neg_, plan_rows_c2c_}) {
+      if (plan != nullptr) fftw_destroy_plan(static_cast<fftw_plan>(plan));
+    }
   }
-  fftw_free(fft_real_);
   fftw_free(fft_half_);
-  fftw_free(fft_full_);
+  fftw_free(coef_);
+  fftw_free(mid_);
 }
 
 void NufftGrid::Resize(size_t count, bool keep_weights) {
@@ -189,47 +218,57 @@ void NufftGrid::FinishSpread() {
     for (int c = 0; c < stride_; ++c) dst[c] += src[c];
   }
   for (int r = 0; r < n1_; ++r) {
-    const double* g = &spread_[static_cast<size_t>(r) * stride_];
-    double* dst = &fft_real_[static_cast<size_t>(r) * n2_];
-    std::memcpy(dst, g, sizeof(double) * n2_);
-    for (int c = 0; c < width_ - 1; ++c) dst[c] += g[n2_ + c];
+    double* g = &spread_[static_cast<size_t>(r) * stride_];
+    for (int c = 0; c < width_ - 1; ++c) g[c] += g[n2_ + c];
   }
-  fftw_execute(static_cast<fftw_plan>(plan_r2c_));
+  fftw_execute(static_cast<fftw_plan>(plan_rows_r2c_));
+  fftw_execute(static_cast<fftw_plan>(plan_cols_half_));
 }
 
-std::complex<double> NufftGrid::Mode(int64_t w1, int64_t w2) const {
-  const double corr = inv_phi_hat1_[static_cast<size_t>(std::abs(w1))] *
-                      inv_phi_hat2_[static_cast<size_t>(std::abs(w2))];
-  // The spread strengths are real: the half spectrum holds w2 >= 0, and
-  // F(-w) = conj F(w) gives the rest.
-  if (w2 >= 0) {
-    return corr * fft_half_[static_cast<size_t>(WrapIndex(w1, n1_)) * (n2_ / 2 + 1) +
-                            static_cast<size_t>(w2)];
+void NufftGrid::BindModes(const std::vector<int32_t>& w1, const std::vector<int32_t>& w2) {
+  const size_t count = w1.size();
+  const size_t half = static_cast<size_t>(n2_ / 2 + 1);
+  corr_.resize(count);
+  mode_cell_.resize(count);
+  mode_conj_.resize(count);
+  coef_plus_.resize(count);
+  coef_minus_.resize(count);
+  auto coef_cell = [&](int64_t a, int64_t b) {
+    return static_cast<size_t>(WrapIndex(a, n1_)) * coef_width_ + static_cast<size_t>(b + m2_);
+  };
+  for (size_t i = 0; i < count; ++i) {
+    corr_[i] = inv_phi_hat1_[static_cast<size_t>(std::abs(w1[i]))] *
+               inv_phi_hat2_[static_cast<size_t>(std::abs(w2[i]))];
+    // The spread strengths are real: the half spectrum holds w2 >= 0, and
+    // F(-w) = conj F(w) gives the rest.
+    mode_conj_[i] = w2[i] < 0;
+    mode_cell_[i] = w2[i] >= 0
+                        ? static_cast<size_t>(WrapIndex(w1[i], n1_)) * half +
+                              static_cast<size_t>(w2[i])
+                        : static_cast<size_t>(WrapIndex(-static_cast<int64_t>(w1[i]), n1_)) * half +
+                              static_cast<size_t>(-w2[i]);
+    coef_plus_[i] = coef_cell(w1[i], w2[i]);
+    coef_minus_[i] = coef_cell(-static_cast<int64_t>(w1[i]), -static_cast<int64_t>(w2[i]));
   }
-  return corr * std::conj(fft_half_[static_cast<size_t>(WrapIndex(-w1, n1_)) * (n2_ / 2 + 1) +
-                                    static_cast<size_t>(-w2)]);
 }
 
 void NufftGrid::ClearCoefficients() {
-  std::fill(fft_full_, fft_full_ + static_cast<size_t>(n1_) * n2_, std::complex<double>(0.0));
-}
-
-void NufftGrid::AddCoefficient(int64_t w1, int64_t w2, std::complex<double> c) {
-  const double corr = inv_phi_hat1_[static_cast<size_t>(std::abs(w1))] *
-                      inv_phi_hat2_[static_cast<size_t>(std::abs(w2))];
-  fft_full_[static_cast<size_t>(WrapIndex(w1, n1_)) * n2_ + WrapIndex(w2, n2_)] += corr * c;
+  for (size_t cell : coef_plus_) coef_[cell] = 0.0;
+  for (size_t cell : coef_minus_) coef_[cell] = 0.0;
 }
 
 void NufftGrid::FinishCoefficients() {
-  fftw_execute(static_cast<fftw_plan>(plan_c2c_));
-  // Padded copy: rows n1 .. n1 + width - 2 and columns n2 .. n2 + width - 2
+  fftw_execute(static_cast<fftw_plan>(plan_cols_pos_));
+  if (plan_cols_neg_ != nullptr) fftw_execute(static_cast<fftw_plan>(plan_cols_neg_));
+  fftw_execute(static_cast<fftw_plan>(plan_rows_c2c_));
+  // Padding: columns n2 .. n2 + width - 2 and rows n1 .. n1 + width - 2
   // repeat the first ones, so the interpolation never wraps.
-  for (int r = 0; r < n1_ + width_ - 1; ++r) {
-    const std::complex<double>* src = &fft_full_[static_cast<size_t>(r % n1_) * n2_];
-    std::complex<double>* dst = &gather_[static_cast<size_t>(r) * stride_];
-    std::copy(src, src + n2_, dst);
-    std::copy(src, src + (width_ - 1), dst + n2_);
+  for (int r = 0; r < n1_; ++r) {
+    std::complex<double>* row = &gather_[static_cast<size_t>(r) * stride_];
+    std::copy(row, row + (width_ - 1), row + n2_);
   }
+  std::copy(gather_.begin(), gather_.begin() + static_cast<std::ptrdiff_t>(width_ - 1) * stride_,
+            gather_.begin() + static_cast<std::ptrdiff_t>(n1_) * stride_);
 }
 
 void NufftGrid::InterpolateRange(size_t begin, size_t end, std::complex<double>* by_point,

@@ -75,14 +75,25 @@ class NufftGrid {
   // Stage 4: spreads sorted positions [begin, end) lying in slabs of one
   // parity (all calls of one parity may run at once).
   void SpreadRange(size_t begin, size_t end, Scratch* scratch);
+  // The modes this grid serves, w_i = (w1[i], w2[i]) inside the box: the
+  // cells and deconvolution factors of each are found once here, not on
+  // every evaluation.
+  void BindModes(const std::vector<int32_t>& w1, const std::vector<int32_t>& w2);
   // Stage 5 (one call per grid): folds the padding and transforms.
   void FinishSpread();
-  std::complex<double> Mode(int64_t w1, int64_t w2) const;
+  // The type-1 sum at bound mode i.
+  std::complex<double> Mode(size_t i) const {
+    const std::complex<double> v = fft_half_[mode_cell_[i]];
+    return corr_[i] * (mode_conj_[i] ? std::conj(v) : v);
+  }
 
-  // Type 2, one grid per thread: coefficients mode by mode (a mode added
-  // twice sums), then the transform.
+  // Type 2, one grid per thread: the coefficients c(w_i) and c(-w_i) of
+  // the bound modes (a cell added twice sums), then the transform.
   void ClearCoefficients();
-  void AddCoefficient(int64_t w1, int64_t w2, std::complex<double> c);
+  void AddCoefficients(size_t i, std::complex<double> at_plus, std::complex<double> at_minus) {
+    coef_[coef_plus_[i]] += corr_[i] * at_plus;
+    coef_[coef_minus_[i]] += corr_[i] * at_minus;
+  }
   void FinishCoefficients();
   // by_point[j] = the type-2 sum at point j, for the points at sorted
   // positions [begin, end) (ranges may run at once).
@@ -122,11 +133,25 @@ class NufftGrid {
   // Padded grids: n1 + width - 1 rows of stride cells.
   std::vector<double> spread_;                 // real, for type 1
   std::vector<std::complex<double>> gather_;   // complex, for type 2
-  double* fft_real_ = nullptr;                 // n1 x n2
-  std::complex<double>* fft_half_ = nullptr;   // n1 x (n2 / 2 + 1)
-  std::complex<double>* fft_full_ = nullptr;   // n1 x n2
-  void* plan_r2c_ = nullptr;
-  void* plan_c2c_ = nullptr;
+  std::complex<double>* fft_half_ = nullptr;   // n1 x (n2 / 2 + 1), type 1's modes
+  // Type 2's coefficients, n1 x (2 m2 + 1) (column w2 + m2), zero but where
+  // written_ says, and the grid after the column pass, n1 x n2 (zero
+  // outside the box's columns).
+  int m2_ = 0;
+  int coef_width_ = 1;
+  std::complex<double>* coef_ = nullptr;
+  // Per bound mode: 1 / (phi_hat(w1) phi_hat(w2)), its cell in the half
+  // spectrum (and whether that cell holds -w), its cells of +-w in coef_.
+  std::vector<double> corr_;
+  std::vector<size_t> mode_cell_;
+  std::vector<uint8_t> mode_conj_;
+  std::vector<size_t> coef_plus_, coef_minus_;
+  std::complex<double>* mid_ = nullptr;
+  void* plan_rows_r2c_ = nullptr;
+  void* plan_cols_half_ = nullptr;
+  void* plan_cols_pos_ = nullptr;
+  void* plan_cols_neg_ = nullptr;
+  void* plan_rows_c2c_ = nullptr;
 };
 
 }  // namespace alignset
