@@ -8,7 +8,8 @@
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
 //       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
 //       [--construction optimized|lattice|lattice-start|net|warm --warm-root DEG
-//        [--warm-iterations I --warm-lr-scale X --warm-warmup F --warm-anneal R --warm-zero R]]
+//        [--warm-iterations I --warm-step DEG --warm-lr-scale X --warm-warmup F --warm-anneal R
+//         --warm-zero R]]
 //       [--first-seed S]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
 //        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
@@ -72,14 +73,16 @@ struct Options {
   // descent from the aligned lattice instead of Owen-Sobol).
   std::string construction = "optimized";
   // "warm": the set for theta is reached from a cold set at `warm_root`
-  // (same theta2) by a chain of 1-degree steps, each a descent with
+  // (same theta2) by a chain of steps (1 degree unless warm_step), each a descent with
   // WarmStartOptions (the service's key lineage, core/align/key_lineage.h)
   // from the previous step's set; the knobs below override single options
   // of it (warm_iterations 0: the profile's warm budget).
   double warm_root = NAN;
   int warm_iterations = 0;
+  // Degrees per warm step (0: one step from the root straight to theta).
+  double warm_step = 1.0;
   double warm_lr_scale = 1.0;
-  double warm_warmup = 0.0;
+  double warm_warmup = -1.0;  // < 0: the profile's warm_warmup_fraction
   double warm_anneal = 1.0;
   // --construction net: the aligned net's options (core/optimize/aligned_net.h).
   AlignedNetOptions net;
@@ -146,6 +149,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->warm_root = std::stod(next());
     } else if (a == "--warm-iterations") {
       o->warm_iterations = std::stoi(next());
+    } else if (a == "--warm-step") {
+      o->warm_step = std::stod(next());
     } else if (a == "--warm-zero") {
       o->warm_zero = std::stod(next());
     } else if (a == "--net-radius") {
@@ -203,7 +208,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
           "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
           "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|net-start|warm]\n"
-          "  [--warm-root DEG] [--warm-iterations I] [--warm-lr-scale X] [--warm-warmup F]\n"
+          "  [--warm-root DEG] [--warm-iterations I] [--warm-step DEG] [--warm-lr-scale X] [--warm-warmup F]\n"
           "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
           "  [--net-radius F] [--net-frequencies K] [--net-sweeps S] [--net-window DEG] [--net-smooth W]\n"
           "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
@@ -384,12 +389,15 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";lr=" << p.learning_rate << ";st=" << p.stratify_axes << ";z=" << p.zero_radius
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
-    << fp.radius << ";tol=" << p.engine_tolerance << ";v=5"
+    << fp.radius << ";tol=" << p.engine_tolerance
+    << ";v=7"  // this cache's own version; 7: the engine's pruned FFTs (other last bits)
     << (o.construction == "lattice-start" ? ";start=lattice" : "")
     << (o.construction == "net-start" ? ";start=net" : "");
   if (o.construction == "warm") {
+    if (o.warm_step != 1.0) s << ";warmstep=" << o.warm_step;
     s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << o.warm_lr_scale << ","
-      << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction;
+      << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction << ","
+      << o.opt.warm_warmup_fraction;
     if (o.warm_zero >= 0) s << ",z" << o.warm_zero;
   }
   uint64_t h = 0xcbf29ce484222325ULL;
@@ -472,11 +480,17 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
   OptimizerOptions opt = o.opt;
   double parent_seconds = 0.0;
   if (o.construction == "warm") {
-    const double step = theta > o.warm_root ? 1.0 : -1.0;
+    // Steps of warm_step degrees towards the root, the first one shorter
+    // when the distance is not a multiple.
+    const double distance = std::abs(theta - o.warm_root);
+    const double size = o.warm_step <= 0.0 || o.warm_step >= distance
+                            ? distance
+                            : distance - o.warm_step * std::ceil(distance / o.warm_step - 1.0);
+    const double step = theta > o.warm_root ? size : -size;
     problem.start = AlignedSet(o, n, theta - step, seed, &parent_seconds);
     opt = WarmStartOptions(o.opt, n, static_cast<int>(problem.directions.size()));
     if (o.warm_iterations > 0) opt.max_iterations = o.warm_iterations;
-    opt.warmup_fraction = o.warm_warmup;
+    if (o.warm_warmup >= 0) opt.warmup_fraction = o.warm_warmup;
     opt.anneal_ratio = o.warm_anneal;
     if (o.warm_zero >= 0) opt.zero_radius = o.warm_zero;
     if (o.warm_lr_scale != 1.0) {

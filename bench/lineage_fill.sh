@@ -4,15 +4,16 @@
 # a fresh cache through a real server on loopback:
 #   - the 46 one-direction keys at N = 4096, whole (wall clock);
 #   - two-direction keys at N = 4096: the box phi1 in 26..34, phi2 in 56..64
-#     around the root (30, 60) (45 distinct canonical keys, all in that
-#     root's subtree, so the fill is the root once and every other key warm);
+#     (45 distinct canonical keys: 4 roots, the rest warm from them or from
+#     ancestors just outside, which the fill computes first);
 #   - the same at N = 1024, and N = 16384 and 65536: a root and one child,
-#     one and two directions;
+#     one direction (8 and 7) and two (31, 58 and 32, 58);
 #   - with ROWS=full4096 (not in the default rows: about 45 min): the whole
 #     two-direction space at N = 4096, one `alignset precompute --space 2dir`.
 # The whole two-direction space is extrapolated from the server log's
-# per-set seconds: 50 roots x the median cold set + 4091 x the mean warm set
-# (a whole-space precompute optimizes each key exactly once, roots first).
+# per-set seconds: 226 roots x the median cold set + 3915 x the mean warm
+# set (the counts of core/align/key_lineage.h; a whole-space precompute
+# optimizes each key exactly once, roots first).
 #   bench/lineage_fill.sh [BUILD_DIR] [OUT_DIR]
 # SUMMARY_ONLY=1: re-read the logs in $LOGS; ROWS="one4096 two1024 ...": run
 # only these rows and keep the other rows' logs.
@@ -55,8 +56,8 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
       one1024|one4096) timed "$row" "$port" -n "$n" --space 1dir ;;
       two1024|two4096) timed "$row" "$port" -n "$n" --space keys "${box[@]}" ;;
       full4096) timed "$row" "$port" -n 4096 --space 2dir ;;
-      one*) timed "$row" "$port" -n "$n" --space keys --key 7 --key 8 ;;
-      two*) timed "$row" "$port" -n "$n" --space keys --key 30,60 --key 31,60 ;;
+      one*) timed "$row" "$port" -n "$n" --space keys --key 8 --key 7 ;;
+      two*) timed "$row" "$port" -n "$n" --space keys --key 31,58 --key 32,58 ;;
     esac
     stop
   done
@@ -87,10 +88,10 @@ rows = {}
 names = []
 for n in (1024, 4096):
     names += [('one%d' % n, '1 dir, N = %d, the 46 keys' % n),
-              ('two%d' % n, '2 dir, N = %d, 45 keys around the root (30, 60)' % n)]
+              ('two%d' % n, '2 dir, N = %d, the 45 keys with phi1 in 26..34, phi2 in 56..64' % n)]
 for n in (16384, 65536):
-    names += [('one%d' % n, '1 dir, N = %d, the root 7 and its child 8' % n),
-              ('two%d' % n, '2 dir, N = %d, the root (30, 60) and its child (31, 60)' % n)]
+    names += [('one%d' % n, '1 dir, N = %d, the root 8 and its child 7' % n),
+              ('two%d' % n, '2 dir, N = %d, the root (31, 58) and its child (32, 58)' % n)]
 names += [('full4096', '2 dir, N = 4096, **the whole space, 4141 keys**')]
 for name, what in names:
     if name not in wall:
@@ -106,14 +107,17 @@ if 'full4096' in rows:
     print('Whole two-direction space at N = 4096, measured: %d sets (%d roots, %d warm) in **%.0f s (%.1f min)** '
           'wall clock, %.3f s a set.\n' % (len(cold) + len(warm), len(cold), len(warm), float(wall['full4096']),
                                           float(wall['full4096']) / 60, float(wall['full4096']) / 4141))
+# Roots of the lineage (core/align/key_lineage.h, algorithm version 7).
+ROOTS_ONE, ROOTS_TWO = 7, 226
 for name in ('two1024', 'two4096'):
-    if name not in rows:
+    if name not in rows or not rows[name][0] or not rows[name][1]:
         continue
     cold, warm = rows[name]
-    total = 50 * statistics.median(cold) + 4091 * statistics.mean(warm)
-    print('Whole two-direction space at N = %s: 50 roots x %.2f s + 4091 x %.3f s = **%.0f s (%.1f min)**.\n' %
-          (name[3:], statistics.median(cold), statistics.mean(warm), total, total / 60))
-for name, keys, roots in [('one16384', 46, 3), ('two16384', 4141, 50), ('one65536', 46, 3), ('two65536', 4141, 50)]:
+    total = ROOTS_TWO * statistics.median(cold) + (4141 - ROOTS_TWO) * statistics.mean(warm)
+    print('Whole two-direction space at N = %s: %d roots x %.2f s + %d x %.3f s = **%.0f s (%.1f min)**.\n' %
+          (name[3:], ROOTS_TWO, statistics.median(cold), 4141 - ROOTS_TWO, statistics.mean(warm), total, total / 60))
+for name, keys, roots in [('one16384', 46, ROOTS_ONE), ('two16384', 4141, ROOTS_TWO),
+                          ('one65536', 46, ROOTS_ONE), ('two65536', 4141, ROOTS_TWO)]:
     if name in rows and rows[name][0] and rows[name][1]:
         cold, warm = rows[name]
         avg = (roots * statistics.median(cold) + (keys - roots) * statistics.mean(warm)) / keys

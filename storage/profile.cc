@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 192,
+static_assert(sizeof(OptimizerOptions) == 200,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -71,6 +71,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "anneal_ratio", o.anneal_ratio);
   Field(t, "min_learning_rate", o.min_learning_rate);
   Field(t, "warm_budget_fraction", o.warm_budget_fraction);
+  Field(t, "warm_warmup_fraction", o.warm_warmup_fraction);
   Field(t, "warm_min_points", o.warm_min_points);
   // progress_every is left out on purpose: it only sets how often the
   // callback runs and never changes the optimized set.

@@ -7,9 +7,9 @@
 namespace alignset {
 
 // The warm-start lineage of the canonical key spaces: a fixed forest over the
-// keys in which every key but a root has a parent one grid step away (one
-// direction moved by one degree, or by a quarter degree on the quarter
-// grid). A root is optimized from Owen-Sobol; any other key continues from
+// keys in which every key but a root has a parent one step away (one
+// direction moved by one degree; on the quarter grid, a quarter or half
+// degree to the nearest whole degree). A root is optimized from Owen-Sobol; any other key continues from
 // its parent's set, aligned onto the neighbouring directions, for a short
 // descent (optimizer.h, WarmStartOptions). Neighbouring keys' sets differ
 // only near the strips that moved, so the short descent reaches the quality
@@ -22,11 +22,17 @@ namespace alignset {
 // recomputed on the spot (the optimizer is deterministic and the cache stores
 // binary64 exactly), in any fill order, shard or server.
 //
-// Roots: the one-direction keys 7, 22, 37 (depth at most 8); the
-// two-direction keys with phi1 and phi2 both multiples of 10 (50 roots,
-// depth at most 10, mean 5). Both grids share the whole-degree keys and
-// their lineage; a quarter-degree key's parent is the neighbour toward the
-// nearest whole degree (30.25 and 30.5 toward 30, 30.75 toward 31).
+// Roots: the one-direction keys 1, 8, ..., 43 (7 roots, depth at most 3,
+// mean 1.65); the two-direction keys with 3 phi1 + 4 phi2 = 0 (mod 25), a
+// lattice whose diamonds of radius 3 tile the plane, and, where the
+// canonical space's edges cut the diamonds, every key still more than 3
+// steps from a root, taken in key order (226 roots, depth at most 3, mean
+// 2.1). Chains are kept this short because each warm step costs a little
+// quality on the integrands the set is not aligned to, and that adds up
+// along a chain (docs/results.md, "Filling the space"). Both grids share
+// the whole-degree keys and their lineage; a quarter-degree key's parent is
+// its nearest whole degree (30.25 and 30.5: 30, 30.75: 31), a step of a
+// quarter or half degree.
 struct LineageParent {
   CanonicalDirections parent;
   // Align(parent's canonical set, ops) is dark along directions one grid

@@ -99,7 +99,7 @@ OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
   const int budget = EffectiveMaxIterations(cold, n, arbitrary_directions);
   warm.max_iterations =
       std::max(1, static_cast<int>(std::lround(cold.warm_budget_fraction * budget)));
-  warm.warmup_fraction = 0.0;
+  warm.warmup_fraction = cold.warm_warmup_fraction;
   return warm;
 }
 
@@ -202,6 +202,9 @@ Status ValidateOptions(const OptimizerOptions& o) {
   if (o.max_iterations < 0) return Status::InvalidArgument("max_iterations must be >= 0");
   if (!(o.warm_budget_fraction >= 0.0 && o.warm_budget_fraction <= 1.0)) {
     return Status::InvalidArgument("warm_budget_fraction must be in [0, 1]");
+  }
+  if (!(o.warm_warmup_fraction >= 0.0 && o.warm_warmup_fraction < 1.0)) {
+    return Status::InvalidArgument("warm_warmup_fraction must be in [0, 1)");
   }
   if (!(o.learning_rate >= 0.0) || !std::isfinite(o.learning_rate)) {
     return Status::InvalidArgument("learning_rate must be finite and >= 0");

@@ -125,12 +125,16 @@ struct OptimizerOptions {
   // The budget of a warm-started descent (WarmStartOptions), as a fraction
   // of the cold budget. The service starts every key that is not a root of
   // the key lineage (core/align/key_lineage.h) from its parent's set; 0
-  // optimizes every key from Owen-Sobol. At 0.13 (195 iterations for two
-  // directions at N = 4096; chains of 10 measured) the aligned and axis
-  // edges, the smoothed step and the disk are the cold sets' within 1-8%,
-  // the triangle 8-11% and the Gaussian members 14-42% worse (N = 4096,
-  // 4 seeds; more at 65536; docs/results.md, "Filling the space").
+  // optimizes every key from Owen-Sobol. 0.13: 130 iterations for one
+  // direction and 195 for two at N = 4096 (docs/results.md, "Filling the
+  // space", for the quality against the cold sets).
   double warm_budget_fraction = 0.13;
+  // The share of a warm descent run with `warmup_weighting` before the
+  // main weighting, as in a cold one. Without it the main weighting alone
+  // pulled the aligned edge and the smoothed step 2-5% above the cold
+  // sets' after a few steps; with 0.5 they match within 1-2% (N = 4096,
+  // 12 seeds, chains of 1 and 3 steps).
+  double warm_warmup_fraction = 0.5;
   // The smallest N whose keys use the lineage. Below it every key is
   // optimized from Owen-Sobol: a cold two-direction set at N = 1024 takes
   // 0.8 s (the 4141 keys in under an hour without the lineage), and there
@@ -168,10 +172,10 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 
 // The options of a descent that continues from a neighbouring key's set:
-// `cold`'s budget times warm_budget_fraction (at least one iteration), no
-// warm-up phase (the start is already spread over the strips), the rest as
-// in `cold`. The start is converged already, so the main phase alone moves
-// the strips by the step between the keys.
+// `cold`'s budget times warm_budget_fraction (at least one iteration), of
+// which warm_warmup_fraction with the warm-up weighting, the rest as in
+// `cold`. The start is converged already, so a short descent moves the
+// strips by the step between the keys.
 OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
                                   int arbitrary_directions);
 

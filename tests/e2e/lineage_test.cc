@@ -86,14 +86,24 @@ uint32_t ShardOf(size_t index, int count, uint32_t shards) {
   return 0;
 }
 
-// The canonical key (33, 57): depth 6, its lineage runs from the root
-// (30, 60) through (30, 59) ... (32, 57).
+// The canonical key (33, 57): depth 3 (the deepest there is), its lineage
+// runs from the root (31, 58) through (31, 57) and (32, 57).
 const std::vector<double> kKey = {33, 57};
+const std::vector<double> kRoot = {31, 58};
+
+// The directions of the key's parent (generation 1), grandparent (2), ...
+std::vector<double> Ancestor(const std::vector<double>& key, int generation) {
+  CanonicalDirections k = Canonicalize(key)->key;
+  for (int g = 0; g < generation; ++g) k = WarmParent(k)->parent;
+  return {Phi1Degrees(k), Phi2Degrees(k)};
+}
 
 TEST(Lineage, TheTestKeyIsDeepEnoughToMatter) {
   const auto c = Canonicalize(kKey);
   ASSERT_TRUE(c.ok());
-  EXPECT_GE(LineageDepth(c->key), 4);
+  EXPECT_EQ(LineageDepth(c->key), 3);
+  EXPECT_EQ(LineageRoot(c->key), Canonicalize(kRoot)->key);
+  EXPECT_EQ(Ancestor(kKey, 2), (std::vector<double>{31, 57}));  // as the batch below says
 }
 
 TEST(Lineage, AKeysSetIsTheSameWhateverWasFilledBefore) {
@@ -114,20 +124,21 @@ TEST(Lineage, AKeysSetIsTheSameWhateverWasFilledBefore) {
     // The key and the ancestors it needed were optimized, once each.
     EXPECT_EQ(stats->optimizations_completed, static_cast<uint64_t>(LineageDepth(Canonicalize(kKey)->key)) + 1);
   }
-  // 2: after its parent, through another orientation of the same key.
+  // 2: after its parent and grandparent, through another orientation of
+  // the same key.
   {
     ServerProcess server(Folder(dir, "neighbours"), kFlags);
     ASSERT_TRUE(server.error().empty()) << server.error();
     auto client = ConnectTo(server);
     ASSERT_NE(client, nullptr);
-    MustGet(*client, {32, 57});
-    MustGet(*client, {31, 57});
+    MustGet(*client, Ancestor(kKey, 1));
+    MustGet(*client, Ancestor(kKey, 2));
     const AlignedSet set = MustGet(*client, {57, 33});
     // The same orbit representative, reached with no swap or mirror.
     EXPECT_FALSE(set.info.swapped || set.info.inverted || set.info.inverted_y);
     EXPECT_TRUE(SameBytes(set.points, cold)) << "after its neighbours";
   }
-  // 3: a batch precompute in another order (a descendant first).
+  // 3: a batch precompute in another order (the key before its grandparent).
   {
     ServerProcess server(Folder(dir, "batch"), kFlags);
     ASSERT_TRUE(server.error().empty()) << server.error();
@@ -136,11 +147,12 @@ TEST(Lineage, AKeysSetIsTheSameWhateverWasFilledBefore) {
     PrecomputeSpec spec;
     spec.n = {kN};
     spec.space = 0;
-    spec.keys = {{34, 57}, {10, 20}, {33, 57}, {30, 60}};
+    // The key listed before its grandparent, and two unrelated keys.
+    spec.keys = {{33, 57}, {10, 20}, {31, 57}, {30, 60}};
     Precompute(*client, spec);
     const AlignedSet set = MustGet(*client, kKey);
     EXPECT_TRUE(set.info.from_cache);
-    EXPECT_TRUE(SameBytes(set.points, cold)) << "in a batch, after a descendant";
+    EXPECT_TRUE(SameBytes(set.points, cold)) << "in a batch, listed before its grandparent";
   }
   // 4: the shard of the two-direction space that holds the key, then the
   // file the shard's server left, read by a new server.
@@ -170,8 +182,8 @@ TEST(Lineage, AKeysSetIsTheSameWhateverWasFilledBefore) {
     const AlignedSet set = MustGet(*client, kKey);
     EXPECT_TRUE(set.info.from_cache);
     EXPECT_TRUE(SameBytes(set.points, cold)) << "read back by a new server";
-    // A key two steps further down, outside the shard: its lineage starts
-    // from what the shard stored.
+    // A key of another root's subtree, outside the shard: optimized on
+    // request.
     const AlignedSet far = MustGet(*client, {33, 47});
     EXPECT_FALSE(far.info.from_cache);
   }
@@ -230,8 +242,8 @@ TEST(Lineage, WarmBudgetZeroOptimizesEveryKeyColdUnderItsOwnProfile) {
   ASSERT_TRUE(stats.ok());
   EXPECT_EQ(stats->optimizations_completed, 1u);
   // A root is optimized cold by both: the same set under two profiles.
-  const AlignedSet ra = MustGet(*cold, {30, 60});
-  const AlignedSet rb = MustGet(*warm, {30, 60});
+  const AlignedSet ra = MustGet(*cold, kRoot);
+  const AlignedSet rb = MustGet(*warm, kRoot);
   EXPECT_TRUE(SameBytes(ra.points, rb.points));
 }
 

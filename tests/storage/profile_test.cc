@@ -62,6 +62,7 @@ TEST(ProfileId, EveryParameterChangesTheId) {
       {"min_learning_rate", [](auto&, auto& o, auto&, auto&) { o.min_learning_rate = 1e-8; }},
       {"warm_budget_fraction", [](auto&, auto& o, auto&, auto&) { o.warm_budget_fraction = 0.5; }},
       {"warm_min_points", [](auto&, auto& o, auto&, auto&) { o.warm_min_points = 1024; }},
+      {"warm_warmup_fraction", [](auto&, auto& o, auto&, auto&) { o.warm_warmup_fraction = 0.0; }},
       {"seed", [](auto&, auto&, auto& s, auto&) { s += 1; }},
       {"algorithm_version", [](auto&, auto&, auto&, auto& v) { v += 1; }},
   };
@@ -121,7 +122,8 @@ TEST(ProfileText, CanonicalSerialization) {
             "zero_radius=3;final_margin=0.4;engine_tolerance=0;beta1=0.9;beta2=0.999;epsilon=1e-12;"
             "divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
             "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;anneal_ratio=1;"
-            "min_learning_rate=1e-07;warm_budget_fraction=0.13;warm_min_points=4096;");
+            "min_learning_rate=1e-07;warm_budget_fraction=0.13;warm_warmup_fraction=0.5;"
+            "warm_min_points=4096;");
 }
 
 }  // namespace
