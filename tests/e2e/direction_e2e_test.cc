@@ -210,11 +210,11 @@ TEST_F(DirectionE2eTest, QuarterDegreeGridServesFinerAnglesAndKeepsWholeDegreeRo
   EXPECT_EQ(bad.status().code(), Status::Code::kInvalidArgument);
 
   // Precompute on the quarter grid: shard 0 of 60 is the first 181 / 60 = 3
-  // keys of the lineage order: the root 7, then its children 6 and 6.75
-  // (quarter indices 28, 24, 27). Sets for 7 and 30 are stored already
-  // (7 by this request).
-  auto seven = get({7.0}, 4);
-  ASSERT_TRUE(seven.ok());
+  // keys of the lineage order: the root 1, then its children 0 and 0.75
+  // (quarter indices 4, 0, 3). Sets for 1 and 30 are stored already (1 by
+  // this request).
+  auto one = get({1.0}, 4);
+  ASSERT_TRUE(one.ok());
   cli::PrecomputeSpec spec;
   spec.n = {64};
   spec.space = 1;
