@@ -390,7 +390,7 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
     << fp.radius << ";tol=" << p.engine_tolerance
-    << ";v=7"  // this cache's own version; 7: the engine's pruned FFTs (other last bits)
+    << ";v=8"  // this cache's own version; 7: the pruned FFTs, 8: the faster projection (other last bits)
     << (o.construction == "lattice-start" ? ";start=lattice" : "")
     << (o.construction == "net-start" ? ";start=net" : "");
   if (o.construction == "warm") {
