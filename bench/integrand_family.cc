@@ -73,9 +73,9 @@ struct Options {
   // descent from the aligned lattice instead of Owen-Sobol).
   std::string construction = "optimized";
   // "warm": the set for theta is reached from a cold set at `warm_root`
-  // (same theta2) by a chain of steps (1 degree unless warm_step), each a descent with
-  // WarmStartOptions (the service's key lineage, core/align/key_lineage.h)
-  // from the previous step's set; the knobs below override single options
+  // (same theta2) by a chain of steps (1 degree unless warm_step), each a
+  // descent with WarmStartOptions (the service's key lineage,
+  // core/align/key_lineage.h) from the previous step's set; the knobs below override single options
   // of it (warm_iterations 0: the profile's warm budget).
   double warm_root = NAN;
   int warm_iterations = 0;
@@ -390,7 +390,9 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << ";fm=" << p.final_margin << ";wf=" << p.warmup_fraction
     << ";wp=" << p.warmup_weighting.exponent << ";k=" << fp.length << "," << fp.width << ","
     << fp.radius << ";tol=" << p.engine_tolerance
-    << ";v=8"  // this cache's own version; 7: the pruned FFTs, 8: the faster projection (other last bits)
+    // This cache's own version; 7: the pruned FFTs, 8: the faster
+    // projection (both: other last bits).
+    << ";v=8"
     << (o.construction == "lattice-start" ? ";start=lattice" : "")
     << (o.construction == "net-start" ? ";start=net" : "");
   if (o.construction == "warm") {

@@ -9,9 +9,10 @@ namespace alignset {
 // The warm-start lineage of the canonical key spaces: a fixed forest over the
 // keys in which every key but a root has a parent one step away (one
 // direction moved by one degree; on the quarter grid, a quarter or half
-// degree to the nearest whole degree). A root is optimized from Owen-Sobol; any other key continues from
-// its parent's set, aligned onto the neighbouring directions, for a short
-// descent (optimizer.h, WarmStartOptions). Neighbouring keys' sets differ
+// degree to the nearest whole degree). A root is optimized from
+// Owen-Sobol; any other key continues from its parent's set, aligned onto
+// the neighbouring directions, for a short descent (optimizer.h,
+// WarmStartOptions). Neighbouring keys' sets differ
 // only near the strips that moved, so the short descent reaches the quality
 // of a cold one at a fraction of the cost (docs/method.md, "Filling the
 // space").

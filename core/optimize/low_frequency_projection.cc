@@ -75,7 +75,7 @@ double ProjectLowFrequencies(PointSet* points, const std::vector<Frequency>& fre
     const double t = 2.0 * kPi * (coordinate - std::floor(coordinate));
     const std::complex<double> e(std::cos(t), std::sin(t));
     out[j] = 1.0;
-    for (int k = 1; k <= top; ++k) out[static_cast<size_t>(k) * n + j] = out[static_cast<size_t>(k - 1) * n + j] * e;
+    for (size_t k = 1; k <= static_cast<size_t>(top); ++k) out[k * n + j] = out[(k - 1) * n + j] * e;
   };
   double worst = 0.0;
   for (int step = 0; step <= iterations; ++step) {

@@ -77,13 +77,15 @@ void FastEngine::BuildGrids() {
     Piece piece;
     piece.grid = std::make_unique<NufftGrid>(fp.box, kernel_);
     piece.members = std::move(fp.members);
+    // The members' modes in the grid's basis, bound to the grid once.
+    std::vector<int32_t> w1, w2;
     for (uint32_t i : piece.members) {
-      piece.w1.push_back(static_cast<int32_t>(fp.box.basis.W1(k_[i].a, k_[i].b)));
-      piece.w2.push_back(static_cast<int32_t>(fp.box.basis.W2(k_[i].a, k_[i].b)));
       grid_of_[i] = static_cast<uint32_t>(grids_.size());
-      local_of_[i] = static_cast<uint32_t>(piece.w1.size() - 1);
+      local_of_[i] = static_cast<uint32_t>(w1.size());
+      w1.push_back(static_cast<int32_t>(fp.box.basis.W1(k_[i].a, k_[i].b)));
+      w2.push_back(static_cast<int32_t>(fp.box.basis.W2(k_[i].a, k_[i].b)));
     }
-    piece.grid->BindModes(piece.w1, piece.w2);
+    piece.grid->BindModes(w1, w2);
     grids_.push_back(std::move(piece));
   }
 }

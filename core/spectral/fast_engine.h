@@ -69,7 +69,6 @@ class FastEngine final : public SpectralEngine {
   struct Piece {
     std::unique_ptr<NufftGrid> grid;
     std::vector<uint32_t> members;        // indices into K
-    std::vector<int32_t> w1, w2;          // their modes in the grid's basis
   };
 
   // The type-1 pass into `spectrum` (strengths: nullptr for all 1); keeps

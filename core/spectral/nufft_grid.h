@@ -134,9 +134,9 @@ class NufftGrid {
   std::vector<double> spread_;                 // real, for type 1
   std::vector<std::complex<double>> gather_;   // complex, for type 2
   std::complex<double>* fft_half_ = nullptr;   // n1 x (n2 / 2 + 1), type 1's modes
-  // Type 2's coefficients, n1 x (2 m2 + 1) (column w2 + m2), zero but where
-  // written_ says, and the grid after the column pass, n1 x n2 (zero
-  // outside the box's columns).
+  // Type 2's coefficients, n1 x (2 m2 + 1) (column w2 + m2), zero but at
+  // the bound modes' cells, and the grid after the column pass, n1 x n2
+  // (zero outside the box's columns).
   int m2_ = 0;
   int coef_width_ = 1;
   std::complex<double>* coef_ = nullptr;
