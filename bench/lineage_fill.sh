@@ -12,7 +12,12 @@
 #     a contiguous block of the lineage order, as a precompute shard takes
 #     it), extrapolated to 4141 keys;
 #   - with ROWS=full4096 (not in the default rows: about 40 min): the whole
-#     two-direction space at N = 4096, one `alignset precompute --space 2dir`.
+#     two-direction space at N = 4096, one `alignset precompute --space 2dir`;
+#   - with ROWS="whole65536 whole65536w2" (about 50 min): the 46 one-direction
+#     keys at N = 65536, whole.
+# A row name ending in w2 runs the server with two workers of one thread
+# each (--workers 2 --threads-per-worker 1: two keys side by side, a key
+# waiting while its parent runs) instead of one worker on both cores.
 # The whole two-direction space is extrapolated from the server log's
 # per-set seconds: 226 roots x the median cold set + 3915 x the mean warm
 # set (the counts of core/align/key_lineage.h; a whole-space precompute
@@ -29,10 +34,10 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   [[ -z ${ROWS:-} ]] && rm -rf "$logs"
   mkdir -p "$logs"
   server_pid=
-  start() {
+  start() {  # port row [server flags]
     rm -f "$logs/$2.db"*
     "$build/server/alignset-server" --listen "127.0.0.1:$1" --db "$logs/$2.db" --log-level info \
-      > "$logs/$2.log" 2>&1 &
+      "${@:3}" > "$logs/$2.log" 2>&1 &
     server_pid=$!
     sleep 1
   }
@@ -53,10 +58,13 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   port=50980
   for row in $rows; do
     port=$((port + 1))
-    n=${row#one}; n=${n#two}; n=${n#full}; n=${n#shard}
-    start "$port" "$row"
-    case $row in
-      one1024|one4096) timed "$row" "$port" -n "$n" --space 1dir ;;
+    base=${row%w2}
+    flags=()
+    [[ $base != "$row" ]] && flags=(--workers 2 --threads-per-worker 1)
+    n=${base#one}; n=${n#two}; n=${n#full}; n=${n#shard}; n=${n#whole}
+    start "$port" "$row" "${flags[@]}"
+    case $base in
+      one1024|one4096|whole*) timed "$row" "$port" -n "$n" --space 1dir ;;
       two1024|two4096) timed "$row" "$port" -n "$n" --space keys "${box[@]}" ;;
       full4096) timed "$row" "$port" -n 4096 --space 2dir ;;
       shard4096) timed "$row" "$port" -n 4096 --space 2dir --shard 0/20 ;;
@@ -84,7 +92,9 @@ def sets(name):
 def max_budget(name):
     return max(int(m) for m in re.findall(r'max_iterations=(\d+)', open(os.path.join(logs, name + '.log')).read()))
 print('# Filling the key spaces with the key lineage: `bash bench/lineage_fill.sh`\n')
-print('2 cores; server defaults (one worker, every core, warm budget 0.13); a fresh cache per row. '
+print('2 cores; server defaults (one worker, every core, warm budget 0.13) but in rows marked *2 workers* '
+      '(`--workers 2 --threads-per-worker 1`: two keys side by side, each on one core, so a set takes '
+      'longer and the seconds per set of those rows are not the wall clock\'s share); a fresh cache per row. '
       'Seconds per set from the server log (`optimize done`), wall clock from the precompute call.\n')
 print('| what | wall s | cold sets | median cold s | warm sets | mean warm s | median warm s |')
 print('|---|---:|---:|---:|---:|---:|---:|')
@@ -97,7 +107,11 @@ for n in (16384, 65536):
     names += [('one%d' % n, '1 dir, N = %d, the root 8 and its child 7' % n),
               ('two%d' % n, '2 dir, N = %d, the root (31, 58) and its child (32, 58)' % n)]
 names += [('shard4096', '2 dir, N = 4096, shard 0/20 of the space (208 keys)'),
-          ('full4096', '2 dir, N = 4096, **the whole space, 4141 keys**')]
+          ('full4096', '2 dir, N = 4096, **the whole space, 4141 keys**'),
+          ('one4096w2', '1 dir, N = 4096, the 46 keys, *2 workers*'),
+          ('shard4096w2', '2 dir, N = 4096, shard 0/20 of the space (208 keys), *2 workers*'),
+          ('whole65536', '1 dir, N = 65536, **the 46 keys**'),
+          ('whole65536w2', '1 dir, N = 65536, **the 46 keys**, *2 workers*')]
 for name, what in names:
     if name not in wall:
         continue
@@ -121,6 +135,16 @@ if 'shard4096' in rows:
               len(cold) + len(warm), len(cold), float(wall['shard4096']),
               float(wall['shard4096']) / (len(cold) + len(warm)),
               float(wall['shard4096']) / (len(cold) + len(warm)) * 4141 / 60))
+for name in ('whole65536', 'whole65536w2'):
+    if name in rows:
+        print('N = 65536, the 46 one-direction keys%s, measured: %.0f s wall, **%.1f s a set**.\n' % (
+            ', 2 workers' if name.endswith('w2') else '', float(wall[name]), float(wall[name]) / 46))
+for name in ('shard4096w2',):
+    if name in rows:
+        cold, warm = rows[name]
+        print('Whole two-direction space at N = 4096 from shard 0/20, 2 workers: %.3f s a set: **%.1f min** '
+              'for 4141 at that rate.\n' % (float(wall[name]) / (len(cold) + len(warm)),
+                                            float(wall[name]) / (len(cold) + len(warm)) * 4141 / 60))
 for name in ('two1024', 'two4096', 'shard4096'):
     if name not in rows or not rows[name][0] or not rows[name][1]:
         continue

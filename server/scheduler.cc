@@ -619,18 +619,13 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
 void Scheduler::PlanLineage(Job* job) {
   std::vector<storage::SetKey> chain = {job->key};
   std::optional<PointSet> start;
-  if (UsesKeyLineage(options_.optimizer, job->key.n)) {
-    for (;;) {
-      const auto parent = WarmParent(chain.back().dirs);
-      if (!parent) break;  // a root: optimized from Owen-Sobol
-      storage::SetKey parent_key = chain.back();
-      parent_key.dirs = parent->parent;
-      if (auto points = HeldSet(parent_key)) {
-        start = Align(*points, parent->ops);
-        break;
-      }
-      chain.push_back(parent_key);
+  // Up to a root (optimized from Owen-Sobol) or a stored ancestor.
+  while (const auto parent_key = LineageParentKey(chain.back())) {
+    if (auto points = HeldSet(*parent_key)) {
+      start = Align(*points, WarmParent(chain.back().dirs)->ops);
+      break;
     }
+    chain.push_back(*parent_key);
   }
   std::reverse(chain.begin(), chain.end());
   int total = 0;
@@ -650,6 +645,18 @@ void Scheduler::PlanLineage(Job* job) {
   job->warm_start = std::move(start);
   job->chain_iterations_done = 0;
   job->chain_iterations_total = total;
+}
+
+std::optional<storage::SetKey> Scheduler::LineageParentKey(const storage::SetKey& key) const {
+  if (ConstructionOfProfile(key.profile) != Construction::kOptimized ||
+      !UsesKeyLineage(options_.optimizer, key.n)) {
+    return std::nullopt;
+  }
+  const auto parent = WarmParent(key.dirs);
+  if (!parent) return std::nullopt;
+  storage::SetKey parent_key = key;
+  parent_key.dirs = parent->parent;
+  return parent_key;
 }
 
 std::optional<PointSet> Scheduler::HeldSet(const storage::SetKey& key) {

@@ -175,6 +175,12 @@ class Scheduler {
                                             const std::string& client = "");
   // Whether the set is stored (no decode, no checksum): precompute's skip test.
   StatusOr<bool> IsStored(const storage::SetKey& key);
+  // The key whose set a job for `key` continues from (its parent in the key
+  // lineage, core/align/key_lineage.h), or nullopt where the job starts
+  // from Owen-Sobol: a root, a lattice or net key, N below --warm-min-n or
+  // a warm budget of 0. A batch holds a key back while this one is still
+  // running in it, so that two workers never optimize one ancestor twice.
+  std::optional<storage::SetKey> LineageParentKey(const storage::SetKey& key) const;
 
   // Stops taking work: queued jobs end with UNAVAILABLE, running ones are
   // asked to stop at their next progress callback. A write in progress

@@ -8,7 +8,10 @@
 #include <deque>
 #include <memory>
 #include <numeric>
+#include <optional>
+#include <string>
 #include <thread>
+#include <unordered_set>
 
 #include "core/align/key_lineage.h"
 #include "server/construction.h"
@@ -194,6 +197,20 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   // Enough concurrent items to keep every worker busy; the batch never fills
   // the queue, so interactive requests always find room.
   const size_t window = static_cast<size_t>(config_.workers);
+  // With several workers, an item whose lineage parent is still running in
+  // this batch waits (the job would otherwise optimize that parent a second
+  // time as its ancestor) and the next items are taken meanwhile: another
+  // root's subtree. `unresolved` names the items outstanding or waiting.
+  // Parents come before children in the order, so the first waiting item's
+  // parent is always outstanding or done. The wait list is bounded: beyond
+  // it the batch waits for the outstanding items instead of reading ahead.
+  constexpr size_t kMaxWaiting = 4096;
+  std::deque<storage::SetKey> waiting;
+  std::unordered_set<std::string> unresolved;
+  auto waits_for_parent = [&](const storage::SetKey& key) {
+    const auto parent = scheduler_->LineageParentKey(key);
+    return parent && unresolved.count(KeyString(*parent)) > 0;
+  };
   auto reap = [&] {
     for (auto it = outstanding.begin(); it != outstanding.end();) {
       if (!it->ticket->Done()) {
@@ -212,55 +229,89 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         p.set_failed(p.failed() + 1);
         error = r.status().message();
       }
+      unresolved.erase(KeyString(it->key));
       send(&it->key, error, true);
       it = outstanding.erase(it);
     }
   };
-
-  for (uint64_t j = 0; j < total; ++j) {
-    const storage::SetKey key = item(j);
-    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
-    auto stored = scheduler_->IsStored(key);
-    if (stored.ok() && *stored) {
-      p.set_cached_already(p.cached_already() + 1);
-      send(&key, "", false);
-      continue;
+  auto wait_a_little = [&] {
+    if (outstanding.empty()) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    } else {
+      outstanding.front().ticket->Wait(kPoll);
     }
-    for (;;) {
-      reap();
-      if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
-      if (outstanding.size() >= window) {
-        outstanding.front().ticket->Wait(kPoll);
-        heartbeat();
+    heartbeat();
+  };
+  // The next item to submit: the first waiting one whose parent is done,
+  // else the next in order that is not stored already (those are counted
+  // here). Nothing when every remaining item waits or none is left.
+  uint64_t j = 0;
+  auto next_item = [&]() -> std::optional<storage::SetKey> {
+    for (auto it = waiting.begin(); it != waiting.end(); ++it) {
+      if (!waits_for_parent(*it)) {
+        storage::SetKey key = std::move(*it);
+        waiting.erase(it);
+        return key;
+      }
+    }
+    while (j < total && waiting.size() < kMaxWaiting) {
+      storage::SetKey key = item(j++);
+      auto stored = scheduler_->IsStored(key);
+      if (stored.ok() && *stored) {
+        p.set_cached_already(p.cached_already() + 1);
+        send(&key, "", false);
         continue;
       }
-      auto ticket = scheduler_->Acquire(key, Priority::kBatch, client);
+      if (window > 1 && waits_for_parent(key)) {
+        unresolved.insert(KeyString(key));
+        waiting.push_back(std::move(key));
+        continue;
+      }
+      return key;
+    }
+    return std::nullopt;
+  };
+
+  for (;;) {
+    reap();
+    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
+    if (outstanding.size() >= window) {
+      wait_a_little();
+      continue;
+    }
+    std::optional<storage::SetKey> key = next_item();
+    if (!key) {
+      if (outstanding.empty() && waiting.empty()) break;
+      // Not expected (a waiting item's parent is outstanding or done), but
+      // never stall: the front item then optimizes its ancestors itself.
+      if (outstanding.empty()) {
+        key = std::move(waiting.front());
+        waiting.pop_front();
+      } else {
+        wait_a_little();
+        continue;
+      }
+    }
+    for (;;) {
+      auto ticket = scheduler_->Acquire(*key, Priority::kBatch, client);
       if (ticket.ok()) {
-        outstanding.push_back({key, std::move(ticket).value()});
+        unresolved.insert(KeyString(*key));
+        outstanding.push_back({std::move(*key), std::move(ticket).value()});
         break;
       }
       if (ticket.status().code() == Status::Code::kResourceExhausted) {
         // Interactive work filled the queue; wait for room.
-        if (outstanding.empty()) {
-          std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        } else {
-          outstanding.front().ticket->Wait(kPoll);
-        }
-        heartbeat();
+        wait_a_little();
+        reap();
+        if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
         continue;
       }
       if (ticket.status().code() == Status::Code::kUnavailable) return ToGrpc(ticket.status());
+      unresolved.erase(KeyString(*key));
       p.set_failed(p.failed() + 1);
-      send(&key, ticket.status().message(), true);
+      send(&*key, ticket.status().message(), true);
       break;
     }
-  }
-  while (!outstanding.empty()) {
-    reap();
-    if (outstanding.empty()) break;
-    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
-    outstanding.front().ticket->Wait(kPoll);
-    heartbeat();
   }
   send(nullptr, "", true);
   spdlog::info("precompute finished: {} optimized, {} cached already, {} failed in {:.1f} s",

@@ -220,6 +220,43 @@ TEST(Lineage, ShardsPartitionTheLineageOrderAndFindTheirParents) {
   EXPECT_EQ(stats->optimizations_completed, 46u);
 }
 
+// With two workers a batch runs two roots' subtrees side by side, and a key
+// waits while its parent is still running in the batch: every key is still
+// optimized exactly once (a job that started before its parent was stored
+// would optimize that parent again as its ancestor), and every set is the
+// one a single worker makes.
+TEST(Lineage, TwoWorkersFillTheSpaceOnceWithTheSameSets) {
+  TempDir dir;
+  std::vector<std::string> flags = kFlags;
+  for (size_t i = 0; i + 1 < flags.size(); ++i) {
+    if (flags[i] == "--workers") flags[i + 1] = "2";
+  }
+  ServerProcess one(Folder(dir, "one"), kFlags);
+  ASSERT_TRUE(one.error().empty()) << one.error();
+  ServerProcess two(Folder(dir, "two"), flags);
+  ASSERT_TRUE(two.error().empty()) << two.error();
+  auto a = ConnectTo(one);
+  auto b = ConnectTo(two);
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  PrecomputeSpec spec;
+  spec.n = {kN};
+  spec.space = 1;
+  Precompute(*a, spec);
+  Precompute(*b, spec);
+  for (ServiceClient* client : {a.get(), b.get()}) {
+    auto stats = client->GetMetrics();
+    ASSERT_TRUE(stats.ok());
+    EXPECT_EQ(stats->optimizations_completed, 46u);
+  }
+  for (int deg = 0; deg <= 45; ++deg) {
+    const AlignedSet x = MustGet(*a, {static_cast<double>(deg)});
+    const AlignedSet y = MustGet(*b, {static_cast<double>(deg)});
+    EXPECT_TRUE(x.info.from_cache && y.info.from_cache) << deg;
+    EXPECT_TRUE(SameBytes(x.points, y.points)) << deg;
+  }
+}
+
 TEST(Lineage, WarmBudgetZeroOptimizesEveryKeyColdUnderItsOwnProfile) {
   TempDir dir;
   std::vector<std::string> flags = kCold;
