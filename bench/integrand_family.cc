@@ -64,6 +64,8 @@ struct Options {
   int scrambles = 16;
   int shifts = 2048;
   int offsets = 8;
+  // CP shifts per Gaussian of the 1024 in `gaussians cp`.
+  int gaussian_shifts = 8;
   bool exact = false;
   // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
@@ -128,6 +130,12 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->shifts = std::stoi(next());
     } else if (a == "--offsets") {
       o->offsets = std::stoi(next());
+    } else if (a == "--gaussian-shifts") {
+      o->gaussian_shifts = std::stoi(next());
+      if (o->gaussian_shifts < 1) {
+        std::fprintf(stderr, "integrand_family: --gaussian-shifts must be at least 1\n");
+        std::exit(2);
+      }
     } else if (a == "--profile") {
       const std::string profile = next();
       if (profile != "current" && profile != "supplement") {
@@ -206,7 +214,7 @@ bool ParseArgs(int argc, char** argv, Options* o) {
     } else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
-          "  [--scrambles K] [--shifts S] [--offsets M] [--exact] [--threads T] [--p P]\n"
+          "  [--scrambles K] [--shifts S] [--offsets M] [--gaussian-shifts G] [--exact] [--threads T] [--p P]\n"
           "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|net-start|warm]\n"
           "  [--warm-root DEG] [--warm-iterations I] [--warm-step DEG] [--warm-lr-scale X] [--warm-warmup F]\n"
           "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
@@ -298,7 +306,7 @@ std::vector<std::unique_ptr<Integrand>> RandomGaussians(int count) {
   return out;
 }
 
-std::vector<Member> Family(double theta, double theta2, int offsets) {
+std::vector<Member> Family(double theta, double theta2, int offsets, int gaussian_shifts) {
   auto offset_at = [&](int e) { return offsets == 1 ? 0.0 : 0.5 * (e + 0.5) / offsets - 0.25; };
   std::vector<Member> family;
   auto steps = [&](const std::string& name, double deg) {
@@ -326,10 +334,11 @@ std::vector<Member> Family(double theta, double theta2, int offsets) {
   single("gaussian", "gaussian");
   single("product", "product");
   // Smooth and not periodic on the square: 1024 Gaussians (8 shifts each
-  // under CP), a linear and a quadratic ramp; without and with shifts.
+  // under CP unless --gaussian-shifts), a linear and a quadratic ramp;
+  // without and with shifts.
   for (int shifted = 0; shifted < 2; ++shifted) {
     const std::string how = shifted ? " cp" : " noshift";
-    family.push_back({"gaussians" + how, RandomGaussians(1024), shifted ? 8 : 0});
+    family.push_back({"gaussians" + how, RandomGaussians(1024), shifted ? gaussian_shifts : 0});
     Member ramp{"ramp" + how, {}, shifted ? -1 : 0};
     ramp.parts.push_back(std::make_unique<SmoothNonPeriodic>(
         "ramp", [](const Point2& p) { return p.x + p.y; }));
@@ -578,7 +587,7 @@ int Run(const Options& o) {
               o.opt.max_iterations, o.opt.engine_tolerance, o.seeds, o.scrambles, o.shifts, o.offsets);
   double worst_ratio = 0.0;
   for (double theta : o.theta) {
-    const std::vector<Member> family = Family(theta, o.theta2, o.offsets);
+    const std::vector<Member> family = Family(theta, o.theta2, o.offsets, o.gaussian_shifts);
     std::map<std::string, std::vector<double>> aligned_by_member, owen_by_member;
     for (uint32_t n : o.n) {
       std::vector<PointSet> sets;

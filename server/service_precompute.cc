@@ -255,6 +255,8 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       }
     }
     while (j < total && waiting.size() < kMaxWaiting) {
+      // A run over many stored items still notices a client that left.
+      if (ctx->IsCancelled() || client_gone) return std::nullopt;
       storage::SetKey key = item(j++);
       auto stored = scheduler_->IsStored(key);
       if (stored.ok() && *stored) {
@@ -280,6 +282,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       continue;
     }
     std::optional<storage::SetKey> key = next_item();
+    if (ctx->IsCancelled() || client_gone) return ClientGone(ctx);
     if (!key) {
       if (outstanding.empty() && waiting.empty()) break;
       // Not expected (a waiting item's parent is outstanding or done), but
