@@ -32,8 +32,8 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   rm -f "$out"/*.tsv
   run n4096one "$seeds" --n 4096 --theta 40 --warm-root 37
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
-  run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512
-  run n65536one 1 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512
+  run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
+  run n65536one 4 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
 fi
 /usr/bin/python3 - "$out" <<'PY' | tee "$out.md"
 import collections, glob, math, os, random, sys
