@@ -128,23 +128,18 @@ if 'full4096' in rows:
                                           float(wall['full4096']) / 60, float(wall['full4096']) / 4141))
 # Roots of the lineage (core/align/key_lineage.h, algorithm version 7).
 ROOTS_ONE, ROOTS_TWO = 7, 226
-if 'shard4096' in rows:
-    cold, warm = rows['shard4096']
-    print('Whole two-direction space at N = 4096 from shard 0/20: %d sets (%d roots) in %.0f s wall, '
-          '%.3f s a set: **%.1f min** for 4141 at that rate.\n' % (
-              len(cold) + len(warm), len(cold), float(wall['shard4096']),
-              float(wall['shard4096']) / (len(cold) + len(warm)),
-              float(wall['shard4096']) / (len(cold) + len(warm)) * 4141 / 60))
+for name in ('shard4096', 'shard4096w2'):
+    if name in rows:
+        cold, warm = rows[name]
+        sets_run, seconds = len(cold) + len(warm), float(wall[name])
+        print('Whole two-direction space at N = 4096 from shard 0/20%s: %d sets (%d roots) in %.0f s wall, '
+              '%.3f s a set: **%.1f min** for 4141 at that rate.\n' % (
+                  ', 2 workers' if name.endswith('w2') else '', sets_run, len(cold), seconds,
+                  seconds / sets_run, seconds / sets_run * 4141 / 60))
 for name in ('whole65536', 'whole65536w2'):
     if name in rows:
         print('N = 65536, the 46 one-direction keys%s, measured: %.0f s wall, **%.1f s a set**.\n' % (
             ', 2 workers' if name.endswith('w2') else '', float(wall[name]), float(wall[name]) / 46))
-for name in ('shard4096w2',):
-    if name in rows:
-        cold, warm = rows[name]
-        print('Whole two-direction space at N = 4096 from shard 0/20, 2 workers: %.3f s a set: **%.1f min** '
-              'for 4141 at that rate.\n' % (float(wall[name]) / (len(cold) + len(warm)),
-                                            float(wall[name]) / (len(cold) + len(warm)) * 4141 / 60))
 for name in ('two1024', 'two4096', 'shard4096'):
     if name not in rows or not rows[name][0] or not rows[name][1]:
         continue

@@ -205,12 +205,12 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   // parent is always outstanding or done. The wait list is bounded: beyond
   // it the batch waits for the outstanding items instead of reading ahead.
   constexpr size_t kMaxWaiting = 4096;
-  std::deque<storage::SetKey> waiting;
-  std::unordered_set<std::string> unresolved;
-  auto waits_for_parent = [&](const storage::SetKey& key) {
-    const auto parent = scheduler_->LineageParentKey(key);
-    return parent && unresolved.count(KeyString(*parent)) > 0;
+  struct Waiting {
+    storage::SetKey key;
+    std::string parent;  // KeyString of its lineage parent
   };
+  std::deque<Waiting> waiting;
+  std::unordered_set<std::string> unresolved;
   auto reap = [&] {
     for (auto it = outstanding.begin(); it != outstanding.end();) {
       if (!it->ticket->Done()) {
@@ -248,8 +248,8 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   uint64_t j = 0;
   auto next_item = [&]() -> std::optional<storage::SetKey> {
     for (auto it = waiting.begin(); it != waiting.end(); ++it) {
-      if (!waits_for_parent(*it)) {
-        storage::SetKey key = std::move(*it);
+      if (unresolved.count(it->parent) == 0) {
+        storage::SetKey key = std::move(it->key);
         waiting.erase(it);
         return key;
       }
@@ -264,10 +264,15 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         send(&key, "", false);
         continue;
       }
-      if (window > 1 && waits_for_parent(key)) {
-        unresolved.insert(KeyString(key));
-        waiting.push_back(std::move(key));
-        continue;
+      if (window > 1) {
+        if (const auto parent = scheduler_->LineageParentKey(key)) {
+          std::string parent_name = KeyString(*parent);
+          if (unresolved.count(parent_name) > 0) {
+            unresolved.insert(KeyString(key));
+            waiting.push_back({std::move(key), std::move(parent_name)});
+            continue;
+          }
+        }
       }
       return key;
     }
@@ -288,7 +293,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       // Not expected (a waiting item's parent is outstanding or done), but
       // never stall: the front item then optimizes its ancestors itself.
       if (outstanding.empty()) {
-        key = std::move(waiting.front());
+        key = std::move(waiting.front().key);
         waiting.pop_front();
       } else {
         wait_a_little();
