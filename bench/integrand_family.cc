@@ -6,10 +6,10 @@
 // Eq. 18 variance beside the Monte Carlo figure.
 //
 //   alignset_integrand_family --n 256,1024,4096 --theta 10,30,45 [--theta2 100]
-//       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--exact]
+//       [--seeds 1] [--scrambles 16] [--shifts 2048] [--offsets 8] [--shift-seed S] [--exact]
 //       [--construction optimized|lattice|lattice-start|net|warm --warm-root DEG
-//        [--warm-iterations I --warm-step DEG --warm-lr-scale X --warm-warmup F --warm-anneal R
-//         --warm-zero R]]
+//        [--warm-iterations I --warm-step DEG --warm-lr-scale X --warm-warmup F
+//         --warm-warmup-max N --warm-anneal R --warm-zero R]]
 //       [--first-seed S]
 //       [--profile current|supplement] [--p P --wp P --warmup F --stratify 0|1
 //        --zero R --margin M --kl X --kw X --kr X --sw-weight C --iterations I --lr LR
@@ -66,6 +66,9 @@ struct Options {
   int offsets = 8;
   // CP shifts per Gaussian of the 1024 in `gaussians cp`.
   int gaussian_shifts = 8;
+  // The seed of the CP shifts, the same for every set and the baselines
+  // (common random numbers); another seed measures the evaluator's own noise.
+  uint64_t shift_seed = 12345;
   bool exact = false;
   // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
@@ -130,6 +133,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->shifts = std::stoi(next());
     } else if (a == "--offsets") {
       o->offsets = std::stoi(next());
+    } else if (a == "--shift-seed") {
+      o->shift_seed = std::stoull(next());
     } else if (a == "--gaussian-shifts") {
       o->gaussian_shifts = std::stoi(next());
       if (o->gaussian_shifts < 1) {
@@ -175,6 +180,8 @@ bool ParseArgs(int argc, char** argv, Options* o) {
       o->warm_anneal = std::stod(next());
     } else if (a == "--warm-warmup") {
       o->warm_warmup = std::stod(next());
+    } else if (a == "--warm-warmup-max") {
+      o->opt.warm_warmup_max_points = static_cast<uint32_t>(std::stoul(next()));
     } else if (a == "--warm-lr-scale") {
       o->warm_lr_scale = std::stod(next());
     } else if (a == "--stratify") {
@@ -214,10 +221,11 @@ bool ParseArgs(int argc, char** argv, Options* o) {
     } else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: alignset_integrand_family [--n LIST] [--theta LIST] [--theta2 DEG] [--seeds S]\n"
-          "  [--scrambles K] [--shifts S] [--offsets M] [--gaussian-shifts G] [--exact] [--threads T] [--p P]\n"
+          "  [--scrambles K] [--shifts S] [--offsets M] [--gaussian-shifts G] [--shift-seed S] [--exact]\n"
+          "  [--threads T] [--p P]\n"
           "  [--profile current|supplement] [--construction optimized|lattice|lattice-start|net|net-start|warm]\n"
           "  [--warm-root DEG] [--warm-iterations I] [--warm-step DEG] [--warm-lr-scale X] [--warm-warmup F]\n"
-          "  [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
+          "  [--warm-warmup-max N] [--warm-anneal R] [--warm-zero R] [--first-seed S]\n"
           "  [--net-radius F] [--net-frequencies K] [--net-sweeps S] [--net-window DEG] [--net-smooth W]\n"
           "  [--wp P] [--warmup F] [--stratify 0|1] [--zero R]\n"
           "  [--margin M] [--kl X] [--kw X] [--kr X] [--sw-weight C] [--iterations I] [--lr LR]\n"
@@ -351,7 +359,7 @@ std::vector<Member> Family(double theta, double theta2, int offsets, int gaussia
   return family;
 }
 
-double MemberVariance(const PointSet& points, const Member& m, int shifts) {
+double MemberVariance(const PointSet& points, const Member& m, int shifts, uint64_t shift_seed) {
   if (m.shifts >= 0) shifts = m.shifts;
   double v = 0.0;
   for (const auto& f : m.parts) {
@@ -364,7 +372,7 @@ double MemberVariance(const PointSet& points, const Member& m, int shifts) {
       continue;
     }
     v += CranleyPattersonVariance(
-             points, [&](const Point2& p) { return g.Value(p); }, g.Integral(), shifts, 12345)
+             points, [&](const Point2& p) { return g.Value(p); }, g.Integral(), shifts, shift_seed)
              .variance;
   }
   return v / static_cast<double>(m.parts.size());
@@ -410,6 +418,9 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
       << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction << ","
       << o.opt.warm_warmup_fraction;
     if (o.warm_zero >= 0) s << ",z" << o.warm_zero;
+    // Only where it changes the descent, so that the sets cached before the
+    // option existed (N at or below it) keep their keys.
+    if (n > o.opt.warm_warmup_max_points) s << ",wwmax" << o.opt.warm_warmup_max_points;
   }
   uint64_t h = 0xcbf29ce484222325ULL;
   for (char c : s.str()) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
@@ -548,7 +559,8 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
 double OwenSobolVariance(const Options& o, uint32_t n, double theta, const Member& m) {
   std::ostringstream key;
   key << "owen n=" << n << " t=" << theta << " t2=" << o.theta2 << " m=" << m.name
-      << " shifts=" << o.shifts << " offsets=" << o.offsets << " scrambles=" << o.scrambles;
+      << " shifts=" << o.shifts << " offsets=" << o.offsets << " scrambles=" << o.scrambles
+      << (o.shift_seed != 12345 ? " shiftseed=" + std::to_string(o.shift_seed) : "");
   const std::string index = o.cache + "/baseline.txt";
   {
     std::ifstream in(index);
@@ -562,7 +574,7 @@ double OwenSobolVariance(const Options& o, uint32_t n, double theta, const Membe
   }
   std::vector<double> v(static_cast<size_t>(o.scrambles));
   Parallel(v.size(), o.threads, [&](size_t s) {
-    v[s] = MemberVariance(OwenScrambledSobol(n, 1000 + s), m, o.shifts);
+    v[s] = MemberVariance(OwenScrambledSobol(n, 1000 + s), m, o.shifts, o.shift_seed);
   });
   double mean = 0.0;
   for (double x : v) mean += x / static_cast<double>(v.size());
@@ -603,7 +615,8 @@ int Run(const Options& o) {
         for (size_t s = 0; s < sets.size(); ++s) jobs.push_back({m, s});
       std::vector<double> values(jobs.size());
       Parallel(jobs.size(), o.threads, [&](size_t j) {
-        values[j] = MemberVariance(sets[jobs[j].second], family[jobs[j].first], o.shifts);
+        values[j] = MemberVariance(sets[jobs[j].second], family[jobs[j].first], o.shifts,
+                                   o.shift_seed);
       });
       for (size_t j = 0; j < jobs.size(); ++j) aligned[jobs[j].first] += values[j] / sets.size();
       std::printf("\ntheta %g%s  N %u%s\n", theta,
