@@ -73,6 +73,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "warm_budget_fraction", o.warm_budget_fraction);
   Field(t, "warm_warmup_fraction", o.warm_warmup_fraction);
   Field(t, "warm_min_points", o.warm_min_points);
+  Field(t, "warm_warmup_max_points", o.warm_warmup_max_points);
   // progress_every is left out on purpose: it only sets how often the
   // callback runs and never changes the optimized set.
   return t;

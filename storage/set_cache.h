@@ -25,7 +25,9 @@ namespace alignset::storage {
 // 7: the fast engine's FFTs are pruned to the modes' box (NufftGrid): the
 //    same sums in another order, so the sets differ from version 6's in the
 //    last bits (up to 1e-13 after a descent), not in quality.
-inline constexpr int kAlgorithmVersion = 7;
+// 8: warm descents above N = 32768 run without the warm-up share
+//    (warm_warmup_max_points); the sets at N <= 32768 are version 7's bytes.
+inline constexpr int kAlgorithmVersion = 8;
 
 // Identifies how a set was made: every optimization parameter and the
 // algorithm version, hashed into a short stable hex id. A changed parameter

@@ -99,7 +99,7 @@ OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
   const int budget = EffectiveMaxIterations(cold, n, arbitrary_directions);
   warm.max_iterations =
       std::max(1, static_cast<int>(std::lround(cold.warm_budget_fraction * budget)));
-  warm.warmup_fraction = cold.warm_warmup_fraction;
+  warm.warmup_fraction = n <= cold.warm_warmup_max_points ? cold.warm_warmup_fraction : 0.0;
   return warm;
 }
 

@@ -63,6 +63,7 @@ TEST(ProfileId, EveryParameterChangesTheId) {
       {"warm_budget_fraction", [](auto&, auto& o, auto&, auto&) { o.warm_budget_fraction = 0.5; }},
       {"warm_min_points", [](auto&, auto& o, auto&, auto&) { o.warm_min_points = 1024; }},
       {"warm_warmup_fraction", [](auto&, auto& o, auto&, auto&) { o.warm_warmup_fraction = 0.0; }},
+      {"warm_warmup_max_points", [](auto&, auto& o, auto&, auto&) { o.warm_warmup_max_points = 1u << 20; }},
       {"seed", [](auto&, auto&, auto& s, auto&) { s += 1; }},
       {"algorithm_version", [](auto&, auto&, auto&, auto& v) { v += 1; }},
   };
@@ -123,7 +124,7 @@ TEST(ProfileText, CanonicalSerialization) {
             "divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
             "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;anneal_ratio=1;"
             "min_learning_rate=1e-07;warm_budget_fraction=0.13;warm_warmup_fraction=0.5;"
-            "warm_min_points=4096;");
+            "warm_min_points=4096;warm_warmup_max_points=32768;");
 }
 
 }  // namespace

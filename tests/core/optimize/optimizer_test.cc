@@ -104,6 +104,28 @@ TEST(Optimizer, DefaultBudgetIsReportedAndKept) {
   EXPECT_EQ(r->stop_reason, StopReason::kMaxIterations);
 }
 
+TEST(Optimizer, WarmDescentTakesItsShareOfTheBudgetAndItsWarmupOnlyUpToItsLimit) {
+  const OptimizerOptions cold;
+  const OptimizerOptions w4096 = WarmStartOptions(cold, 4096, 1);
+  EXPECT_EQ(w4096.max_iterations, 130);
+  EXPECT_EQ(WarmStartOptions(cold, 4096, 2).max_iterations, 195);
+  EXPECT_DOUBLE_EQ(w4096.warmup_fraction, cold.warm_warmup_fraction);
+  EXPECT_GT(w4096.warmup_fraction, 0.0);
+  const uint32_t limit = cold.warm_warmup_max_points;
+  EXPECT_DOUBLE_EQ(WarmStartOptions(cold, limit, 1).warmup_fraction, cold.warm_warmup_fraction);
+  EXPECT_DOUBLE_EQ(WarmStartOptions(cold, limit + 1, 1).warmup_fraction, 0.0);
+  const OptimizerOptions w65536 = WarmStartOptions(cold, 65536, 1);
+  EXPECT_EQ(w65536.max_iterations, 520);
+  EXPECT_DOUBLE_EQ(w65536.warmup_fraction, 0.0);
+  // Everything else is the cold descent's.
+  EXPECT_DOUBLE_EQ(w65536.weighting.exponent, cold.weighting.exponent);
+  EXPECT_DOUBLE_EQ(w65536.zero_radius, cold.zero_radius);
+  OptimizerOptions everywhere;
+  everywhere.warm_warmup_max_points = kMaxPoints;
+  EXPECT_DOUBLE_EQ(WarmStartOptions(everywhere, 65536, 1).warmup_fraction,
+                   everywhere.warm_warmup_fraction);
+}
+
 TEST(Optimizer, DeterministicForASeedAcrossThreadCounts) {
   OptimizerOptions o;
   o.max_iterations = 60;
