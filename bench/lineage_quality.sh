@@ -10,6 +10,10 @@
 # other seeds against the cold sets (seed s + S/2 against seed s), the ratio
 # two equally good sets show. Members evaluated without a shift swing by
 # factors between seeds; their cells say little (the null shows how little).
+# At N = 65536 each set is evaluated once per CP shift seed (SHIFT_SEEDS) and
+# the mean taken: with 64 shifts per Gaussian one evaluation of the CP
+# Gaussians moved by up to 22% under another shift seed, as much as the
+# differences being measured (bench/results/lineage_warmup_large_n.md).
 #   bench/lineage_quality.sh [BUILD_DIR] [OUT_DIR]    (SUMMARY_ONLY=1: re-read OUT_DIR's tsv files)
 #   SEEDS=S (default 12) for the N = 4096 cases.
 set -euo pipefail
@@ -19,13 +23,18 @@ cache=${CACHE:-$build/bench-cache/lineage}
 seeds=${SEEDS:-12}
 fam="$build/bench/alignset_integrand_family"
 mkdir -p "$out" "$cache"
-run() {  # tag seeds args...
+run() {  # tag seeds args...   (SHIFT_SEEDS="A B ...": evaluate each set once per CP shift seed)
   local tag=$1 count=$2
   shift 2
   for s in $(seq 1 "$count"); do
-    "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --out "$out/${tag}_cold_s$s.tsv" > /dev/null
-    "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --construction warm \
-      --out "$out/${tag}_warm_s$s.tsv" > /dev/null
+    for ss in ${SHIFT_SEEDS:-12345}; do
+      local x=""
+      [[ -n ${SHIFT_SEEDS:-} ]] && x="_x$ss"
+      "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --shift-seed "$ss" \
+        --out "$out/${tag}_cold_s$s$x.tsv" > /dev/null
+      "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --shift-seed "$ss" --construction warm \
+        --out "$out/${tag}_warm_s$s$x.tsv" > /dev/null
+    done
   done
 }
 if [[ -z ${SUMMARY_ONLY:-} ]]; then
@@ -33,10 +42,11 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   run n4096one "$seeds" --n 4096 --theta 40 --warm-root 37
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
   run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
-  run n65536one 4 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
+  SHIFT_SEEDS="12345 777 778 779" \
+    run n65536one 4 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
 fi
 /usr/bin/python3 - "$out" <<'PY' | tee "$out.md"
-import collections, glob, math, os, random, sys
+import collections, glob, math, os, random, re, sys
 out = sys.argv[1]
 random.seed(1)
 tags = sorted({os.path.basename(f).split('_')[0] for f in glob.glob(os.path.join(out, '*_s*.tsv'))},
@@ -52,14 +62,20 @@ def cell(logs):
     return '%.3f [%.2f, %.2f] (%d)' % (gm(logs), boot[100], boot[1899], len(logs))
 table = collections.OrderedDict()
 columns = []
+pattern = re.compile(r'^(\w+?)_(cold|warm)_s(\d+)(?:_x(\d+))?\.tsv$')
 for tag in tags:
-    rows = collections.defaultdict(lambda: collections.defaultdict(dict))
+    # rows[member][kind][seed]: the mean over the set's evaluations (one per CP shift seed).
+    sums = collections.defaultdict(lambda: collections.defaultdict(lambda: collections.defaultdict(list)))
     for f in glob.glob(os.path.join(out, tag + '_*_s*.tsv')):
-        kind = os.path.basename(f).split('_')[1]
-        seed = int(f.rsplit('_s', 1)[1][:-4])
+        match = pattern.match(os.path.basename(f))
+        if not match:
+            continue
+        kind, seed = match.group(2), int(match.group(3))
         for line in open(f).read().splitlines()[1:]:
             t = line.split('\t')
-            rows[t[2]][kind][seed] = float(t[3])
+            sums[t[2]][kind][seed].append(float(t[3]))
+    rows = {m: {k: {s: sum(v) / len(v) for s, v in d.items()} for k, d in kinds.items()}
+            for m, kinds in sums.items()}
     columns += [tag + ': warm / cold', tag + ': null, cold / cold']
     for member, d in rows.items():
         cold, warm = d.get('cold', {}), d.get('warm', {})
