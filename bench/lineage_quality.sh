@@ -43,7 +43,7 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
   run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
   SHIFT_SEEDS="12345 777 778 779" \
-    run n65536one 4 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
+    run n65536one 6 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
 fi
 /usr/bin/python3 - "$out" <<'PY' | tee "$out.md"
 import collections, glob, math, os, random, re, sys

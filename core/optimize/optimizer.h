@@ -137,13 +137,13 @@ struct OptimizerOptions {
   double warm_warmup_fraction = 0.5;
   // The largest N whose warm descents run that warm-up share; above it the
   // whole warm budget runs the main weighting (algorithm version 8). At
-  // N = 65536 (4 seeds) the warm-up half let the lowest frequencies drift
-  // (the power at |v| <= 3.5 about twice the cold sets' after the
-  // projection) and the main iterations left did not bring them back: the
-  // centred Gaussian 2.2x the cold sets', 1.2x to 12x by seed; without it
-  // 0.33x, and the axis edges 0.68-0.75x. At 16384 and 32768 the half is
-  // needed: without it the aligned edge 1.10x (6 seeds, each 1.04-1.15x) and
-  // 1.09x (2 seeds). bench/results/lineage_warmup_large_n.md.
+  // N = 65536 the warm-up half let the lowest frequencies drift (the power
+  // at |v| <= 3.5 about twice the cold sets' after the projection) and the
+  // main iterations left did not bring them back: the centred Gaussian 2.2x
+  // the cold sets' (4 seeds, 1.2x to 12x by seed); without it 0.20x (6
+  // seeds), and the axis edges 0.70x. At 16384 and 32768 the half is needed:
+  // without it the aligned edge 1.10x (6 seeds, each 1.04-1.15x) and 1.09x
+  // (4 seeds, each 1.07-1.13x). bench/results/lineage_warmup_large_n.md.
   uint32_t warm_warmup_max_points = 32768;
   // The smallest N whose keys use the lineage. Below it every key is
   // optimized from Owen-Sobol: a cold two-direction set at N = 1024 takes
@@ -184,8 +184,8 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 // The options of a descent that continues from a neighbouring key's set:
 // `cold`'s budget times warm_budget_fraction (at least one iteration), of
 // which warm_warmup_fraction with the warm-up weighting (none above
-// warm_warmup_max_points), the rest as in `cold`. The start is converged already, so a short descent moves the
-// strips by the step between the keys.
+// warm_warmup_max_points), the rest as in `cold`. The start is converged
+// already, so a short descent moves the strips by the step between the keys.
 OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
                                   int arbitrary_directions);
 
