@@ -55,6 +55,10 @@
 namespace alignset {
 namespace {
 
+// The CP shifts' seed every table before --shift-seed used; the baseline cache
+// keys of runs with it carry no seed, so they stay valid.
+constexpr uint64_t kDefaultShiftSeed = 12345;
+
 struct Options {
   std::vector<uint32_t> n = {256, 1024, 4096};
   std::vector<double> theta = {10, 30, 45};
@@ -68,7 +72,7 @@ struct Options {
   int gaussian_shifts = 8;
   // The seed of the CP shifts, the same for every set and the baselines
   // (common random numbers); another seed measures the evaluator's own noise.
-  uint64_t shift_seed = 12345;
+  uint64_t shift_seed = kDefaultShiftSeed;
   bool exact = false;
   // Multipliers of the profile's strip length, width and disk radius.
   double kl = 1.0, kw = 1.0, kr = 1.0;
@@ -560,7 +564,7 @@ double OwenSobolVariance(const Options& o, uint32_t n, double theta, const Membe
   std::ostringstream key;
   key << "owen n=" << n << " t=" << theta << " t2=" << o.theta2 << " m=" << m.name
       << " shifts=" << o.shifts << " offsets=" << o.offsets << " scrambles=" << o.scrambles
-      << (o.shift_seed != 12345 ? " shiftseed=" + std::to_string(o.shift_seed) : "");
+      << (o.shift_seed != kDefaultShiftSeed ? " shiftseed=" + std::to_string(o.shift_seed) : "");
   const std::string index = o.cache + "/baseline.txt";
   {
     std::ifstream in(index);
