@@ -197,13 +197,20 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   // Enough concurrent items to keep every worker busy; the batch never fills
   // the queue, so interactive requests always find room.
   const size_t window = static_cast<size_t>(config_.workers);
-  // With several workers, an item whose lineage parent is still running in
-  // this batch waits (the job would otherwise optimize that parent a second
-  // time as its ancestor) and the next items are taken meanwhile: another
-  // root's subtree. `unresolved` names the items outstanding or waiting.
-  // Parents come before children in the order, so the first waiting item's
-  // parent is always outstanding or done. The wait list is bounded: beyond
-  // it the batch waits for the outstanding items instead of reading ahead.
+  // With several workers the roots go first: a warm item (one with a
+  // lineage parent) goes to a wait list, and a free worker reads ahead for
+  // the next root before it takes the first waiting item whose parent is
+  // done. A warm item must not start before its parent in this batch is done
+  // (the job would optimize that parent a second time as its ancestor), and
+  // the roots, cold and several times a warm step's length, all start early
+  // so that the batch ends on warm steps: taking a ready child before the
+  // next root left the last root running alone at the end (at N = 65536 one
+  // core idled 172 s of a 1355 s fill; bench/results/
+  // lineage_schedule_replay.md).
+  // `unresolved` names the items outstanding or waiting. Parents come
+  // before children in the order, so the first waiting item's parent is
+  // always outstanding or done. The wait list is bounded: beyond it the
+  // batch takes waiting items instead of reading ahead.
   constexpr size_t kMaxWaiting = 4096;
   struct Waiting {
     storage::SetKey key;
@@ -242,18 +249,12 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     }
     heartbeat();
   };
-  // The next item to submit: the first waiting one whose parent is done,
-  // else the next in order that is not stored already (those are counted
-  // here). Nothing when every remaining item waits or none is left.
+  // The next item to submit: the next root in order that is not stored
+  // already (those are counted here), else the first waiting one whose
+  // parent is done. Nothing when every remaining item waits or none is left.
+  // One worker takes the items in order.
   uint64_t j = 0;
   auto next_item = [&]() -> std::optional<storage::SetKey> {
-    for (auto it = waiting.begin(); it != waiting.end(); ++it) {
-      if (unresolved.count(it->parent) == 0) {
-        storage::SetKey key = std::move(it->key);
-        waiting.erase(it);
-        return key;
-      }
-    }
     while (j < total && waiting.size() < kMaxWaiting) {
       // A run over many stored items still notices a client that left.
       if (ctx->IsCancelled() || client_gone) return std::nullopt;
@@ -265,16 +266,22 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
         continue;
       }
       if (window > 1) {
+        // Every warm key goes through the wait list, its parent done or
+        // not, so that the roots read after it start first.
         if (const auto parent = scheduler_->LineageParentKey(key)) {
-          std::string parent_name = KeyString(*parent);
-          if (unresolved.count(parent_name) > 0) {
-            unresolved.insert(KeyString(key));
-            waiting.push_back({std::move(key), std::move(parent_name)});
-            continue;
-          }
+          unresolved.insert(KeyString(key));
+          waiting.push_back({std::move(key), KeyString(*parent)});
+          continue;
         }
       }
       return key;
+    }
+    for (auto it = waiting.begin(); it != waiting.end(); ++it) {
+      if (unresolved.count(it->parent) == 0) {
+        storage::SetKey key = std::move(it->key);
+        waiting.erase(it);
+        return key;
+      }
     }
     return std::nullopt;
   };

@@ -220,8 +220,8 @@ TEST(Lineage, ShardsPartitionTheLineageOrderAndFindTheirParents) {
   EXPECT_EQ(stats->optimizations_completed, 46u);
 }
 
-// With two workers a batch runs two roots' subtrees side by side, and a key
-// waits while its parent is still running in the batch: every key is still
+// With two workers a batch runs two keys side by side, and a key waits
+// while its parent is still running in the batch: every key is still
 // optimized exactly once (a job that started before its parent was stored
 // would optimize that parent again as its ancestor), and every set is the
 // one a single worker makes.
@@ -254,6 +254,45 @@ TEST(Lineage, TwoWorkersFillTheSpaceOnceWithTheSameSets) {
     const AlignedSet y = MustGet(*b, {static_cast<double>(deg)});
     EXPECT_TRUE(x.info.from_cache && y.info.from_cache) << deg;
     EXPECT_TRUE(SameBytes(x.points, y.points)) << deg;
+  }
+}
+
+// Two workers start every root (a cold optimization, several warm steps
+// long) before any warm key, so that a batch ends on short warm steps
+// rather than on a root running alone. Nothing but roots has been started
+// until the last root has, which takes roots - 2 completions; so the first
+// roots - 1 keys to complete are roots. Taking a ready child before the next
+// root (the order before) finishes warm children among the first few.
+TEST(Lineage, TwoWorkersStartEveryRootBeforeAWarmKey) {
+  TempDir dir;
+  std::vector<std::string> flags = kFlags;
+  for (size_t i = 0; i + 1 < flags.size(); ++i) {
+    if (flags[i] == "--workers") flags[i + 1] = "2";
+  }
+  ServerProcess server(Folder(dir, "two"), flags);
+  ASSERT_TRUE(server.error().empty()) << server.error();
+  auto client = ConnectTo(server);
+  ASSERT_NE(client, nullptr);
+  PrecomputeSpec spec;
+  spec.n = {kN};
+  spec.space = 1;
+  std::vector<int> completed;  // degrees, in the order they completed
+  uint64_t done = 0;
+  auto result = client->Precompute(spec, [&](const PrecomputeUpdate& u) {
+    if (u.done == done) return;
+    done = u.done;
+    const size_t at = u.last_key.find("dirs=1:");
+    ASSERT_NE(at, std::string::npos) << u.last_key;
+    completed.push_back(std::stoi(u.last_key.substr(at + 7)));
+  });
+  ASSERT_TRUE(result.ok()) << result.status().message();
+  ASSERT_EQ(completed.size(), 46u);
+  int roots = 0;
+  for (int deg = 0; deg <= 45; ++deg) roots += LineageDepth(CanonicalKeyAt(1, deg)) == 0;
+  ASSERT_GE(roots, 3);
+  for (int i = 0; i + 1 < roots; ++i) {
+    EXPECT_EQ(LineageDepth(CanonicalKeyAt(1, static_cast<size_t>(completed[i]))), 0)
+        << "completion " << i << " is the warm key at " << completed[i] << " degrees";
   }
 }
 
