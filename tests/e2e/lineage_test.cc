@@ -34,6 +34,14 @@ const std::vector<std::string> kFlags = [] {
   f.insert(f.end(), {"--warm-min-n", "16"});
   return f;
 }();
+// The same with two workers of one thread: two keys side by side.
+const std::vector<std::string> kTwoWorkerFlags = [] {
+  std::vector<std::string> f = kFlags;
+  for (size_t i = 0; i + 1 < f.size(); ++i) {
+    if (f[i] == "--workers") f[i + 1] = "2";
+  }
+  return f;
+}();
 constexpr uint32_t kN = 64;
 
 AlignedSet MustGet(ServiceClient& client, std::vector<double> dirs) {
@@ -227,13 +235,9 @@ TEST(Lineage, ShardsPartitionTheLineageOrderAndFindTheirParents) {
 // one a single worker makes.
 TEST(Lineage, TwoWorkersFillTheSpaceOnceWithTheSameSets) {
   TempDir dir;
-  std::vector<std::string> flags = kFlags;
-  for (size_t i = 0; i + 1 < flags.size(); ++i) {
-    if (flags[i] == "--workers") flags[i + 1] = "2";
-  }
   ServerProcess one(Folder(dir, "one"), kFlags);
   ASSERT_TRUE(one.error().empty()) << one.error();
-  ServerProcess two(Folder(dir, "two"), flags);
+  ServerProcess two(Folder(dir, "two"), kTwoWorkerFlags);
   ASSERT_TRUE(two.error().empty()) << two.error();
   auto a = ConnectTo(one);
   auto b = ConnectTo(two);
@@ -265,11 +269,7 @@ TEST(Lineage, TwoWorkersFillTheSpaceOnceWithTheSameSets) {
 // root (the order before) finishes warm children among the first few.
 TEST(Lineage, TwoWorkersStartEveryRootBeforeAWarmKey) {
   TempDir dir;
-  std::vector<std::string> flags = kFlags;
-  for (size_t i = 0; i + 1 < flags.size(); ++i) {
-    if (flags[i] == "--workers") flags[i + 1] = "2";
-  }
-  ServerProcess server(Folder(dir, "two"), flags);
+  ServerProcess server(Folder(dir, "two"), kTwoWorkerFlags);
   ASSERT_TRUE(server.error().empty()) << server.error();
   auto client = ConnectTo(server);
   ASSERT_NE(client, nullptr);
