@@ -180,7 +180,7 @@ class Scheduler {
   // from Owen-Sobol: a root, a lattice or net key, N below --warm-min-n or
   // a warm budget of 0. A batch holds a key back while this one is still
   // running in it, so that two workers never optimize one ancestor twice,
-  // and starts the keys without one (the roots) first.
+  // and starts the keys without one (the roots) of each N first.
   std::optional<storage::SetKey> LineageParentKey(const storage::SetKey& key) const;
 
   // Stops taking work: queued jobs end with UNAVAILABLE, running ones are

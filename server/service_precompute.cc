@@ -138,6 +138,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     total = all * (req->shard_index() + 1) / shards - first;
     step = 1;
   }
+  auto n_of = [&](uint64_t j) { return req->n(static_cast<int>((first + j * step) / per_n)); };
   auto item = [&](uint64_t j) {
     const uint64_t c = first + j * step;
     return scheduler_->KeyFor(req->n(static_cast<int>(c / per_n)),
@@ -249,13 +250,16 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     }
     heartbeat();
   };
-  // The next item to submit: the next root in order that is not stored
-  // already (those are counted here), else the first waiting one whose
-  // parent is done. Nothing when every remaining item waits or none is left.
-  // One worker takes the items in order.
+  // The next item to submit: the next root of the waiting items' N in order
+  // that is not stored already (those are counted here), else the first
+  // waiting one whose parent is done. Nothing when every remaining item waits
+  // or none is left. One worker takes the items in order.
   uint64_t j = 0;
   auto next_item = [&]() -> std::optional<storage::SetKey> {
     while (j < total && waiting.size() < kMaxWaiting) {
+      // Roots first within one N: the next N's roots wait until every key of
+      // this one has started, so that sizes still finish in the order asked.
+      if (!waiting.empty() && n_of(j) != waiting.front().key.n) break;
       // A run over many stored items still notices a client that left.
       if (ctx->IsCancelled() || client_gone) return std::nullopt;
       storage::SetKey key = item(j++);

@@ -12,8 +12,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <tuple>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "core/align/canonical.h"
@@ -72,6 +73,35 @@ void Precompute(ServiceClient& client, const PrecomputeSpec& spec) {
   auto done = client.Precompute(spec, nullptr);
   ASSERT_TRUE(done.ok()) << done.status().message();
   EXPECT_EQ(done->failed, 0u);
+}
+
+// A precompute of the one-direction space at `sizes` on a fresh two-worker
+// server: each optimized key as (N, degrees), in the order they completed.
+std::vector<std::pair<uint32_t, int>> TwoWorkerCompletionOrder(const TempDir& dir,
+                                                               std::vector<uint32_t> sizes) {
+  std::vector<std::pair<uint32_t, int>> completed;
+  ServerProcess server(Folder(dir, "two"), kTwoWorkerFlags);
+  EXPECT_TRUE(server.error().empty()) << server.error();
+  auto client = ConnectTo(server);
+  if (client == nullptr) {
+    ADD_FAILURE() << "no connection";
+    return completed;
+  }
+  PrecomputeSpec spec;
+  spec.n = std::move(sizes);
+  spec.space = 1;
+  uint64_t done = 0;
+  auto result = client->Precompute(spec, [&](const PrecomputeUpdate& u) {
+    if (u.done == done) return;
+    done = u.done;
+    // "n=N dirs=1:D profile=..." (storage::KeyToString)
+    const size_t at = u.last_key.find(" dirs=1:");
+    ASSERT_TRUE(u.last_key.rfind("n=", 0) == 0 && at != std::string::npos) << u.last_key;
+    completed.emplace_back(static_cast<uint32_t>(std::stoul(u.last_key.substr(2))),
+                           std::stoi(u.last_key.substr(at + 8)));
+  });
+  EXPECT_TRUE(result.ok()) << result.status().message();
+  return completed;
 }
 
 // The shard of `shards` whose block of the lineage order (roots' subtrees
@@ -269,31 +299,34 @@ TEST(Lineage, TwoWorkersFillTheSpaceOnceWithTheSameSets) {
 // root (the order before) finishes warm children among the first few.
 TEST(Lineage, TwoWorkersStartEveryRootBeforeAWarmKey) {
   TempDir dir;
-  ServerProcess server(Folder(dir, "two"), kTwoWorkerFlags);
-  ASSERT_TRUE(server.error().empty()) << server.error();
-  auto client = ConnectTo(server);
-  ASSERT_NE(client, nullptr);
-  PrecomputeSpec spec;
-  spec.n = {kN};
-  spec.space = 1;
-  std::vector<int> completed;  // degrees, in the order they completed
-  uint64_t done = 0;
-  auto result = client->Precompute(spec, [&](const PrecomputeUpdate& u) {
-    if (u.done == done) return;
-    done = u.done;
-    const size_t at = u.last_key.find("dirs=1:");
-    ASSERT_NE(at, std::string::npos) << u.last_key;
-    completed.push_back(std::stoi(u.last_key.substr(at + 7)));
-  });
-  ASSERT_TRUE(result.ok()) << result.status().message();
+  const auto completed = TwoWorkerCompletionOrder(dir, {kN});
   ASSERT_EQ(completed.size(), 46u);
   int roots = 0;
   for (int deg = 0; deg <= 45; ++deg) roots += LineageDepth(CanonicalKeyAt(1, deg)) == 0;
   ASSERT_GE(roots, 3);
   for (int i = 0; i + 1 < roots; ++i) {
-    EXPECT_EQ(LineageDepth(CanonicalKeyAt(1, static_cast<size_t>(completed[i]))), 0)
-        << "completion " << i << " is the warm key at " << completed[i] << " degrees";
+    const int deg = completed[i].second;
+    EXPECT_EQ(LineageDepth(CanonicalKeyAt(1, static_cast<size_t>(deg))), 0)
+        << "completion " << i << " is the warm key at " << deg << " degrees";
   }
+}
+
+// Roots first holds within one N: a request for two sizes starts the second
+// size's keys only when every key of the first has started, so at most one
+// key of the first completes after the second size's first key. Reading
+// ahead for roots across sizes would start the larger size's roots while the
+// smaller size's warm keys wait.
+TEST(Lineage, TwoWorkersFinishOneSizeBeforeTheNext) {
+  TempDir dir;
+  const auto completed = TwoWorkerCompletionOrder(dir, {kN, 4 * kN});
+  ASSERT_EQ(completed.size(), 92u);
+  const auto first_large = std::find_if(completed.begin(), completed.end(),
+                                        [](const auto& c) { return c.first == 4 * kN; }) -
+                           completed.begin();
+  EXPECT_GE(first_large, 45) << "a key of N = " << 4 * kN << " completed before "
+                             << first_large << " of the 46 keys of N = " << kN;
+  EXPECT_EQ(std::count_if(completed.begin(), completed.end(), [](const auto& c) { return c.first == kN; }),
+            46);
 }
 
 TEST(Lineage, WarmBudgetZeroOptimizesEveryKeyColdUnderItsOwnProfile) {
