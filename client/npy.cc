@@ -1,5 +1,7 @@
 #include <alignset/npy.h>
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -164,6 +166,14 @@ Status WriteNpy(const std::string& path, const std::vector<size_t>& shape,
   }
   std::string out = NpyHeader(shape);
   out.append(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double));
+  // A device or a pipe is written as it is: the rename below would replace
+  // it with a regular file (as root, /dev/null itself).
+  struct stat st;
+  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    std::ofstream f(path, std::ios::binary);
+    f.write(out.data(), static_cast<std::streamsize>(out.size()));
+    return f.flush() ? Status::Ok() : Status::InvalidArgument("cannot write " + path);
+  }
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);

@@ -1,5 +1,6 @@
 #include "client/point_file.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -87,6 +88,18 @@ Status WriteAll(const std::string& path, const std::string& data) {
     if (std::fwrite(data.data(), 1, data.size(), stdout) != data.size() || std::fflush(stdout) != 0) {
       return Status::InvalidArgument(std::string("cannot write to standard output: ") +
                                      std::strerror(errno));
+    }
+    return Status::Ok();
+  }
+  // A device or a pipe (-o /dev/null) is written as it is: the rename below
+  // would replace it with a regular file (as root, /dev/null itself).
+  struct stat st;
+  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
+    const bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size();
+    if (std::fclose(f) != 0 || !ok) {
+      return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
     }
     return Status::Ok();
   }

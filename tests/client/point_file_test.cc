@@ -3,6 +3,8 @@
 // '#'-separated text, (m, N, 2) .npy, "set,x,y" CSV) travel both ways.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -215,6 +217,37 @@ TEST(PointFileOut, SeveralSetsAsNpyAndUtkText) {
   ASSERT_EQ(aligned->size(), 2u);
   EXPECT_EQ((*aligned)[1], Align((*sets)[1], {true, true, false}));
   for (const std::string& p : {npy, txt, one}) std::remove(p.c_str());
+}
+
+// A device or a pipe given as the output (`-o /dev/null`) is written into,
+// not replaced: the atomic write renames a temporary file onto the path,
+// which as root turned /dev/null into a regular file. A FIFO stands in for
+// the device: it must still be a FIFO afterwards and carry the bytes. Also
+// through WriteNpy, the public .npy writer.
+TEST(PointFileOut, AFifoIsWrittenIntoNotReplaced) {
+  for (const std::string name : {"out.csv", "out.npy", "raw.npy"}) {
+    const std::string fifo = TempPath(name);
+    std::remove(fifo.c_str());
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+    // Open for reading first (non-blocking), so the writer's open succeeds.
+    const int reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0) << std::strerror(errno);
+    const Status written = name == "raw.npy" ? alignset::WriteNpy(fifo, std::vector<size_t>{3, 2},
+                                                        std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.5, 0.6})
+                                             : WritePointFile(fifo, kThree);
+    EXPECT_TRUE(written.ok()) << written.message();
+    struct stat st;
+    ASSERT_EQ(stat(fifo.c_str(), &st), 0);
+    EXPECT_TRUE(S_ISFIFO(st.st_mode)) << name << " was replaced";
+    char buffer[4096];
+    const ssize_t got = read(reader, buffer, sizeof buffer);
+    EXPECT_GT(got, 0) << name << ": nothing came through the pipe";
+    if (got > 0 && name != "out.csv") {
+      EXPECT_EQ(std::string(buffer, 6), "\x93NUMPY") << name;
+    }
+    close(reader);
+    std::remove(fifo.c_str());
+  }
 }
 
 }  // namespace
