@@ -141,7 +141,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   auto n_of = [&](uint64_t j) { return req->n(static_cast<int>((first + j * step) / per_n)); };
   auto item = [&](uint64_t j) {
     const uint64_t c = first + j * step;
-    return scheduler_->KeyFor(req->n(static_cast<int>(c / per_n)),
+    return scheduler_->KeyFor(n_of(j),
                               space[order[(c / realizations) % space_size]],
                               static_cast<uint32_t>(c % realizations), *construction);
   };
