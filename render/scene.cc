@@ -2,8 +2,8 @@
 
 namespace alignset::render {
 
-Scene::Scene(std::string name, int width, int height, std::vector<PixelIntegrand> pixels)
-    : name_(std::move(name)), width_(width), height_(height), pixels_(std::move(pixels)) {}
+Scene::Scene(std::string name, int width, int height, std::vector<PixelIntegrand> pixels, PixelDomain domain)
+    : name_(std::move(name)), width_(width), height_(height), pixels_(std::move(pixels)), domain_(domain) {}
 
 std::vector<double> Scene::Reference() const {
   std::vector<double> image(pixels_.size());

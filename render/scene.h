@@ -12,10 +12,19 @@ namespace alignset::render {
 // A W x H image whose every pixel is a 2-D integrand over [0,1)^2 with an
 // exact integral. Pixel (x, y) is row y, column x; images are stored row by
 // row (index y * W + x), y growing upwards in the scene's own coordinates.
+// How neighbouring pixels' integration domains lie to each other, which is
+// what a renderer knows about its integral without knowing the geometry:
+// kFootprint, each pixel's [0,1)^2 is its square in the image plane, beside
+// its neighbours' (an edge runs on into the next pixel); kShared, every
+// pixel integrates over the same square (an area light seen from each
+// receiver point: the neighbours see the same edges, moved a little).
+enum class PixelDomain { kFootprint, kShared };
+
 class Scene {
  public:
   Scene() = default;
-  Scene(std::string name, int width, int height, std::vector<PixelIntegrand> pixels);
+  Scene(std::string name, int width, int height, std::vector<PixelIntegrand> pixels,
+        PixelDomain domain = PixelDomain::kFootprint);
 
   const std::string& name() const { return name_; }
   int width() const { return width_; }
@@ -23,6 +32,7 @@ class Scene {
   size_t size() const { return pixels_.size(); }
   const PixelIntegrand& Pixel(int x, int y) const { return pixels_[y * width_ + x]; }
   const PixelIntegrand& Pixel(size_t index) const { return pixels_[index]; }
+  PixelDomain domain() const { return domain_; }
 
   // The exact image: every pixel's closed-form integral.
   std::vector<double> Reference() const;
@@ -32,6 +42,7 @@ class Scene {
   std::string name_;
   int width_ = 0, height_ = 0;
   std::vector<PixelIntegrand> pixels_;
+  PixelDomain domain_ = PixelDomain::kFootprint;
 };
 
 // (a) Antialiasing of a vector scene: triangles, thin bars, a star and a

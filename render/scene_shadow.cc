@@ -92,7 +92,7 @@ Scene MakeShadowScene(int width, int height, uint64_t seed) {
       pixels.emplace_back(g.emission, Flatten(blocked, 1e-14));
     }
   }
-  return Scene("shadow", width, height, std::move(pixels));
+  return Scene("shadow", width, height, std::move(pixels), PixelDomain::kShared);
 }
 
 }  // namespace alignset::render

@@ -162,8 +162,14 @@ class SpectralEstimator : public DirectionEstimator {
       } else {
         rows[2].clear();
       }
-      // The pixel and its neighbours within half a pixel, lines that cross
-      // the pixel (core/analysis/edge_line_fit.h).
+      // The pixel and its neighbours (core/analysis/edge_line_fit.h): on
+      // pixel footprints, the samples within half a pixel and lines that
+      // cross the pixel; on a domain every pixel shares (the shadow's
+      // light), the neighbours' patches stacked on the pixel's, one line
+      // each, all parallel (read as footprints, their edges did not line
+      // up, and pooling had left the shadow's directions where the pixel's
+      // own 64 samples put them: a median 2.2 degrees off).
+      const bool shared = scene.domain() == PixelDomain::kShared;
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
         const size_t i = static_cast<size_t>(y) * w + x;
         std::array<const SampledPatch*, 9> block{};
@@ -172,16 +178,17 @@ class SpectralEstimator : public DirectionEstimator {
           const int u = static_cast<int>(x) + k % 3 - 1;
           if (!row.empty() && u >= 0 && u < w) block[k] = &row[u];
         }
-        const StatusOr<DirectionEstimate> e = EstimateEdgeLinesPooled(block, kMargin, lines_);
+        const StatusOr<DirectionEstimate> e =
+            shared ? EstimateEdgeLinesStacked(block, lines_) : EstimateEdgeLinesPooled(block, kMargin, lines_);
         if (!e.ok()) {
           refused_.fetch_add(1, std::memory_order_relaxed);
           return;
         }
         PixelDirection d = FromEstimate(*e, p_.min_confidence_pct);
         if (d.kind == PixelDirection::Kind::kNone) return;  // the pixel's own fit stands
-        // Where the two disagree the pixel's own fit stands: on the soft
-        // shadows, edges curve and crowd within a pixel or two, and an
-        // unchecked pooled line made the directions worse there.
+        // Where the two disagree the pixel's own fit stands: an unchecked
+        // pooled line made the shadow's directions worse when its pixels
+        // were read as footprints.
         if (out[i].kind != PixelDirection::Kind::kNone &&
             AxialDistanceDeg(d.theta1, out[i].theta1) > kAgreeDeg) {
           return;

@@ -137,6 +137,132 @@ DirectionLobe Lobe(const Found& f, size_t crossings) {
   return lobe;
 }
 
+// Crossings of several patches over one domain: crossing i belongs to patch
+// of[i]; by_patch lists each patch's crossings.
+struct Stack {
+  std::vector<Point2> m;
+  std::vector<int> of;
+  int centre = 0;
+};
+
+// The inliers of the parallel lines with normal (nx, ny), one per patch,
+// each at the offset whose band of width 2 band holds most of its crossings
+// among `among` (a patch without the edge adds what lies in its best band,
+// a few strays at most).
+std::vector<size_t> ParallelInliers(const Stack& s, const std::vector<size_t>& among, int patches,
+                                    double nx, double ny, double band) {
+  std::vector<std::vector<std::pair<double, size_t>>> proj(static_cast<size_t>(patches));
+  for (size_t i : among) proj[s.of[i]].push_back({s.m[i].x * nx + s.m[i].y * ny, i});
+  std::vector<size_t> in;
+  for (std::vector<std::pair<double, size_t>>& p : proj) {
+    if (p.empty()) continue;
+    std::sort(p.begin(), p.end());
+    size_t best_lo = 0, best_count = 0;
+    for (size_t lo = 0, hi = 0; lo < p.size(); ++lo) {
+      while (hi < p.size() && p[hi].first - p[lo].first <= 2.0 * band) ++hi;
+      if (hi - lo > best_count) best_count = hi - lo, best_lo = lo;
+    }
+    for (size_t j = best_lo; j < best_lo + best_count; ++j) in.push_back(p[j].second);
+  }
+  return in;
+}
+
+size_t CountIn(const Stack& s, const std::vector<size_t>& idx, int patch) {
+  size_t c = 0;
+  for (size_t i : idx) c += s.of[i] == patch;
+  return c;
+}
+
+// Total least squares on parallel lines: each patch's inliers about their
+// own centroid, the scatter pooled.
+Line FitParallel(const Stack& s, const std::vector<size_t>& idx, int patches) {
+  std::vector<double> cx(patches, 0.0), cy(patches, 0.0), count(patches, 0.0);
+  for (size_t i : idx) cx[s.of[i]] += s.m[i].x, cy[s.of[i]] += s.m[i].y, count[s.of[i]] += 1.0;
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (size_t i : idx) {
+    const int k = s.of[i];
+    const double dx = s.m[i].x - cx[k] / count[k], dy = s.m[i].y - cy[k] / count[k];
+    sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+  }
+  const double phi = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  Line l;
+  l.nx = -std::sin(phi), l.ny = std::cos(phi);
+  return l;
+}
+
+// The stacked counterpart of BestLine: candidate directions through two
+// crossings of one patch, each scored by the inliers of its parallel lines
+// over all patches; a direction must rest on at least two of the centre
+// patch's crossings.
+Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, int patches, double band,
+                        const EdgeLineOptions& o, uint64_t seed) {
+  Found best;
+  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(patches));
+  for (size_t i : among) by_patch[s.of[i]].push_back(i);
+  if (by_patch[s.centre].size() < 2) return best;
+  for (double baseline : {1.0 / 3.0, 4.0 * band}) {
+    Pcg32 rng(seed);
+    int tried = 0;
+    for (int draw = 0; draw < 8 * o.candidates && tried < o.candidates; ++draw) {
+      const size_t a = among[rng.NextU32() % among.size()];
+      const std::vector<size_t>& same = by_patch[s.of[a]];
+      const size_t b = same[rng.NextU32() % same.size()];
+      const double dx = s.m[b].x - s.m[a].x, dy = s.m[b].y - s.m[a].y, len = std::hypot(dx, dy);
+      if (len < baseline) continue;
+      ++tried;
+      std::vector<size_t> in = ParallelInliers(s, among, patches, -dy / len, dx / len, band);
+      if (CountIn(s, in, s.centre) < 2) continue;
+      if (in.size() > best.inliers.size()) best = {true, Line{0.0, 0.0, -dy / len, dx / len}, std::move(in)};
+    }
+    if (best.ok) break;
+  }
+  if (!best.ok) return best;
+  for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
+    const Line l = FitParallel(s, best.inliers, patches);
+    std::vector<size_t> in = ParallelInliers(s, among, patches, l.nx, l.ny, band);
+    if (CountIn(s, in, s.centre) < 2) break;
+    best.line = l;
+    best.inliers = std::move(in);
+  }
+  return best;
+}
+
+// Steps 3-4 on k crossings, the first line and (with o.second) a second
+// one on the crossings off it; best(among, seed) is the robust line search.
+template <class Best>
+void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& best, DirectionEstimate* out) {
+  std::vector<size_t> all(k);
+  for (size_t i = 0; i < k; ++i) all[i] = i;
+  const Found first = best(all, seed);
+  const double need = std::max<double>(o.min_crossings, o.min_share * k);
+  if (!first.ok || first.inliers.size() < need) {
+    out->first = None("no straight edge: " + std::to_string(first.inliers.size()) + " of " +
+                      std::to_string(k) + " crossings on one line");
+    out->second = None(out->first.reason);
+    return;
+  }
+  out->first = Lobe(first, k);
+  if (!o.second) return;
+  std::vector<size_t> rest;
+  {
+    std::vector<bool> used(k, false);
+    for (size_t i : first.inliers) used[i] = true;
+    for (size_t i = 0; i < k; ++i) {
+      if (!used[i]) rest.push_back(i);
+    }
+  }
+  const Found second = best(rest, HashCombine(seed, 2));
+  const double need2 = std::max<double>(o.min_crossings, o.second_min_share * k);
+  if (!second.ok || second.inliers.size() < need2) {
+    out->second = None("no second edge: " + std::to_string(second.inliers.size()) + " of " +
+                       std::to_string(k) + " crossings on a second line");
+  } else if (AxialDistanceDeg(NormalDegrees(second.line), out->first.theta_deg) < o.min_separation_deg) {
+    out->second = None("the second line is parallel to the first");
+  } else {
+    out->second = Lobe(second, k);
+  }
+}
+
 Status ValidateOptions(const EdgeLineOptions& o) {
   if (!(o.neighbour_radius >= 0.5 && o.neighbour_radius <= 5.0)) {
     return Status::InvalidArgument("edge lines: neighbour_radius must be in [0.5, 5] spacings");
@@ -163,23 +289,18 @@ Status ValidateOptions(const EdgeLineOptions& o) {
   return Status::Ok();
 }
 
-}  // namespace
+bool NonConstant(const SampledPatch& patch) {
+  const auto [lo, hi] = std::minmax_element(patch.values.begin(), patch.values.end());
+  return *hi - *lo > 1e-12 * std::max(1.0, std::fabs(*hi));
+}
 
-StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
-  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
-  if (Status s = ValidateOptions(o); !s.ok()) return s;
-  DirectionEstimate out;
-  out.has_second = o.second;
+// Steps 1-2: the midpoints of the neighbouring pairs whose values jump.
+std::vector<Point2> Crossings(const SampledPatch& patch, const EdgeLineOptions& o) {
   const std::vector<Point2>& p = patch.points;
   const std::vector<double>& v = patch.values;
   const size_t n = p.size();
   const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
   const double range = *hi - *lo;
-  if (!(range > 1e-12 * std::max(1.0, std::fabs(*hi)))) {
-    out.first = None("constant patch");
-    out.second = None("constant patch");
-    return out;
-  }
   const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
   const double radius = o.neighbour_radius * spacing, jump = o.jump_fraction * range;
 
@@ -204,6 +325,24 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const E
       }
     }
   }
+  return mid;
+}
+
+}  // namespace
+
+StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
+  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
+  if (Status s = ValidateOptions(o); !s.ok()) return s;
+  DirectionEstimate out;
+  out.has_second = o.second;
+  const size_t n = patch.points.size();
+  if (!NonConstant(patch)) {
+    out.first = None("constant patch");
+    out.second = None("constant patch");
+    return out;
+  }
+  const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
+  const std::vector<Point2> mid = Crossings(patch, o);
   const size_t k = mid.size();
   out.frequencies = k;
   if (k < static_cast<size_t>(o.min_crossings)) {
@@ -211,38 +350,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const E
     out.second = None(out.first.reason);
     return out;
   }
-  std::vector<size_t> all(k);
-  for (size_t i = 0; i < k; ++i) all[i] = i;
   const double band = o.band * spacing;
   const uint64_t seed = HashCombine(static_cast<uint64_t>(n), static_cast<uint64_t>(k));
-  const Found first = BestLine(mid, all, band, o, seed);
-  const double need = std::max<double>(o.min_crossings, o.min_share * k);
-  if (!first.ok || first.inliers.size() < need) {
-    out.first = None("no straight edge: " + std::to_string(first.inliers.size()) + " of " +
-                     std::to_string(k) + " crossings on one line");
-    out.second = None(out.first.reason);
-    return out;
-  }
-  out.first = Lobe(first, k);
-  if (!o.second) return out;
-  std::vector<size_t> rest;
-  {
-    std::vector<bool> used(k, false);
-    for (size_t i : first.inliers) used[i] = true;
-    for (size_t i = 0; i < k; ++i) {
-      if (!used[i]) rest.push_back(i);
-    }
-  }
-  const Found second = BestLine(mid, rest, band, o, HashCombine(seed, 2));
-  const double need2 = std::max<double>(o.min_crossings, o.second_min_share * k);
-  if (!second.ok || second.inliers.size() < need2) {
-    out.second = None("no second edge: " + std::to_string(second.inliers.size()) + " of " +
-                      std::to_string(k) + " crossings on a second line");
-  } else if (AxialDistanceDeg(NormalDegrees(second.line), out.first.theta_deg) < o.min_separation_deg) {
-    out.second = None("the second line is parallel to the first");
-  } else {
-    out.second = Lobe(second, k);
-  }
+  FindLines(k, o, seed, [&](const std::vector<size_t>& among, uint64_t s) {
+    return BestLine(mid, among, band, o, s);
+  }, &out);
   return out;
 }
 
@@ -273,6 +385,50 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
   o.focus_x0 = o.focus_y0 = (margin + inset) / side;
   o.focus_x1 = o.focus_y1 = (1.0 + margin - inset) / side;
   return EstimateEdgeLines(pooled, o);
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
+                                                     const EdgeLineOptions& o) {
+  const SampledPatch* centre = pixels[4];
+  if (!centre) return Status::InvalidArgument("stacked edge lines: no centre pixel");
+  if (Status s = ValidateOptions(o); !s.ok()) return s;
+  for (const SampledPatch* p : pixels) {
+    if (!p) continue;
+    if (Status s = ValidateSampledPatch(*p); !s.ok()) return s;
+    if (p->points.size() != centre->points.size()) {
+      return Status::InvalidArgument("stacked edge lines: every pixel needs as many samples as the centre");
+    }
+  }
+  DirectionEstimate out;
+  out.has_second = o.second;
+  if (!NonConstant(*centre)) {
+    out.first = None("constant patch");
+    out.second = None("constant patch");
+    return out;
+  }
+  Stack s;
+  s.centre = 4;
+  for (int k = 0; k < 9; ++k) {
+    if (!pixels[k] || !NonConstant(*pixels[k])) continue;
+    for (const Point2& m : Crossings(*pixels[k], o)) {
+      s.m.push_back(m);
+      s.of.push_back(k);
+    }
+  }
+  const size_t k = s.m.size();
+  out.frequencies = k;
+  const size_t own = static_cast<size_t>(std::count(s.of.begin(), s.of.end(), s.centre));
+  if (own < 2 || k < static_cast<size_t>(o.min_crossings)) {
+    out.first = None("no edge: " + std::to_string(own) + " neighbouring pairs jump in the pixel");
+    out.second = None(out.first.reason);
+    return out;
+  }
+  const double band = o.band / std::sqrt(static_cast<double>(centre->points.size()));
+  const uint64_t seed = HashCombine(static_cast<uint64_t>(centre->points.size()), static_cast<uint64_t>(k));
+  FindLines(k, o, seed, [&](const std::vector<size_t>& among, uint64_t sd) {
+    return BestParallelLines(s, among, 9, band, o, sd);
+  }, &out);
+  return out;
 }
 
 }  // namespace alignset

@@ -72,4 +72,20 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch,
 StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
                                                     double margin, const EdgeLineOptions& options = {});
 
+// A pixel's fit from its own samples and its neighbours' where every pixel
+// integrates over the same domain (a light source's square, a lens): the
+// neighbours see the same edges, moved a little by their own position, not
+// the edge's continuation beside the pixel (which EstimateEdgeLinesPooled
+// reads). Each of the 9 patches (the centre at [4], nullptr where the image
+// ends, each over the shared [0,1]^2, every one with the centre's sample
+// count) gives its own crossings; a candidate direction is scored by the
+// crossings within the band of one line per patch, all lines parallel, each
+// at its patch's best offset, and must rest on at least two of the centre's
+// own crossings; the refinement pools each patch's scatter about its own
+// inliers' centroid. Steps 3-4 and the second line as in EstimateEdgeLines,
+// the shares over all patches' crossings. INVALID_ARGUMENT for a missing
+// centre, an invalid patch or options out of range.
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
+                                                     const EdgeLineOptions& options = {});
+
 }  // namespace alignset
