@@ -28,10 +28,14 @@ namespace alignset::render {
 //                median at M = 256 where the scattered spectral path is 20°
 //                (bench/results/direction_accuracy.txt);
 //  - "nedgesM":  the same M points per pixel, and the edge-line fit on the
-//                samples of the pixel and of its neighbours within half a
-//                pixel (about 4M samples; a renderer has its neighbours'
-//                pre-pass too), looking only for lines that cross the pixel;
-//                the pixel's own fit where that finds nothing or where the
+//                samples of the pixel and of its neighbours (a renderer has
+//                its neighbours' pre-pass too): where pixels are footprints
+//                in the image plane, the samples within half a pixel (about
+//                4M), looking only for lines that cross the pixel; where
+//                every pixel integrates over one shared square (the shadow's
+//                light, Scene::domain()), the 3 x 3 pixels' samples stacked,
+//                one parallel line each (EstimateEdgeLinesStacked); the
+//                pixel's own fit where that finds nothing or where the
 //                two disagree by more than 8 degrees. The pixel pays M
 //                evaluations, as with edgesM, and reuses its own M. Pooling
 //                needs the scene (DirectionEstimator::EstimateScene); one
@@ -75,8 +79,10 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec);
 // neighbours'. edges256 (the pixel's own samples) made every estimated
 // sampler's edge error lower than grid16c50 (the same 256 evaluations) on
 // the three scene seeds at N = 256, 1024 and 4096, and pooling lowered
-// aligned-lattice's by another 1.1-1.4x on antialias at 1024 and 4096 and
-// left shadow within 1% (docs/rendering.md, "Every sample counted"). Its
+// aligned-lattice's by another 1.1-1.4x on antialias at 1024 and 4096 and,
+// read stacked (the shadow's pixels share the light's square), on shadow
+// from 2.50 and 3.15x below Owen-Sobol at the same total to 3.19 and 4.03x
+// (docs/rendering.md, "Every sample counted"). Its
 // samples are reusable. (Its confidence is the inliers' share, at least
 // one half, so a c50 floor is a no-op.)
 inline constexpr const char* kDefaultPrepass = "nedges256";
@@ -88,8 +94,10 @@ inline constexpr const char* kDefaultPrepass = "nedges256";
 // where edges256 is 1.2-1.4x (at 512), and a sweep of 32, 64 and 128
 // samples and of the lattice's window kept 64
 // (bench/results/render_prepass_sweep256.md); at 1024 edges256 is ahead.
-// With pooling, nedges64 at 256 is 2.5x (antialias) and 1.7x (shadow)
-// below Owen-Sobol at 320 (docs/rendering.md, "Every sample counted").
+// With pooling, nedges64 at 256 is 2.5x (antialias) and 2.1x (shadow)
+// below Owen-Sobol at 320, and a sweep with the stacked shadow fit over
+// scene seeds 1-6 kept 64 (nedges32 at 288: 2.07 and 2.08x; nedges128 at
+// 384: 2.15 and 1.84x; docs/rendering.md, "Every sample counted").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n);
 // Whether and how a pre-pass is folded into the pixel's estimate
