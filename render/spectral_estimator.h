@@ -35,8 +35,8 @@ namespace alignset::render {
 //                every pixel integrates over one shared square (the shadow's
 //                light, Scene::domain()), the 3 x 3 pixels' samples stacked,
 //                one parallel line each (EstimateEdgeLinesStacked); the
-//                pixel's own fit where that finds nothing or where the
-//                two disagree by more than 8 degrees. The pixel pays M
+//                pixel's own fit where that finds nothing or, on
+//                footprints, where the two disagree by more than 8 degrees. The pixel pays M
 //                evaluations, as with edgesM, and reuses its own M. Pooling
 //                needs the scene (DirectionEstimator::EstimateScene); one
 //                pixel's Estimate alone is edgesM's fit.
