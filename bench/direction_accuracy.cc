@@ -357,10 +357,10 @@ int main(int argc, char** argv) {
       std::array<SampledPatch, 9> block;
       std::array<const SampledPatch*, 9> ptrs{};
       const double sx = 0.1 + 0.1 * c.v, sy = 0.1 + 0.1 * c.w;
+      const Integrand2 step = Step(c);
+      const Vec2 n = UnitVector(c.theta);
       for (int k = 0; k < 9; ++k) {
         const double dx = k % 3 - 1, dy = k / 3 - 1;
-        const Integrand2 step = Step(c);
-        const Vec2 n = UnitVector(c.theta);
         const double moved = sx * dx - sy * dy;
         block[k] = owen([&](const Point2& p) { return step({p.x - moved * n.x, p.y - moved * n.y}); }, m,
                         HashCombine(c.seed, k));

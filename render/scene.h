@@ -9,9 +9,6 @@
 
 namespace alignset::render {
 
-// A W x H image whose every pixel is a 2-D integrand over [0,1)^2 with an
-// exact integral. Pixel (x, y) is row y, column x; images are stored row by
-// row (index y * W + x), y growing upwards in the scene's own coordinates.
 // How neighbouring pixels' integration domains lie to each other, which is
 // what a renderer knows about its integral without knowing the geometry:
 // kFootprint, each pixel's [0,1)^2 is its square in the image plane, beside
@@ -20,6 +17,9 @@ namespace alignset::render {
 // receiver point: the neighbours see the same edges, moved a little).
 enum class PixelDomain { kFootprint, kShared };
 
+// A W x H image whose every pixel is a 2-D integrand over [0,1)^2 with an
+// exact integral. Pixel (x, y) is row y, column x; images are stored row by
+// row (index y * W + x), y growing upwards in the scene's own coordinates.
 class Scene {
  public:
   Scene() = default;

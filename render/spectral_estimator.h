@@ -36,8 +36,9 @@ namespace alignset::render {
 //                light, Scene::domain()), the 3 x 3 pixels' samples stacked,
 //                one parallel line each (EstimateEdgeLinesStacked); the
 //                pixel's own fit where that finds nothing or, on
-//                footprints, where the two disagree by more than 8 degrees. The pixel pays M
-//                evaluations, as with edgesM, and reuses its own M. Pooling
+//                footprints, where the two disagree by more than 8
+//                degrees. The pixel pays M evaluations, as with edgesM,
+//                and reuses its own M. Pooling
 //                needs the scene (DirectionEstimator::EstimateScene); one
 //                pixel's Estimate alone is edgesM's fit.
 // A suffix "cP" (grid16c50) adds the renderer's own floor on the estimator's

@@ -129,6 +129,12 @@ DirectionLobe None(const std::string& reason) {
   return lobe;
 }
 
+// Neither lobe found, for one reason.
+void NoLines(const std::string& reason, DirectionEstimate* out) {
+  out->first = None(reason);
+  out->second = None(reason);
+}
+
 DirectionLobe Lobe(const Found& f, size_t crossings) {
   DirectionLobe lobe;
   lobe.status = DirectionStatus::kFound;
@@ -138,24 +144,26 @@ DirectionLobe Lobe(const Found& f, size_t crossings) {
 }
 
 // Crossings of several patches over one domain: crossing i belongs to patch
-// of[i]; by_patch lists each patch's crossings.
+// of[i], one of `patches`; the centre patch is the pixel's own.
 struct Stack {
   std::vector<Point2> m;
   std::vector<int> of;
+  int patches = 0;
   int centre = 0;
 };
 
 // The inliers of the parallel lines with normal (nx, ny), one per patch,
-// each at the offset whose band of width 2 band holds most of its crossings
-// among `among` (a patch without the edge adds what lies in its best band,
-// a few strays at most).
-std::vector<size_t> ParallelInliers(const Stack& s, const std::vector<size_t>& among, int patches,
+// each at the offset whose band of width 2 band holds most of that patch's
+// crossings in by_patch (a patch without the edge adds what lies in its
+// best band, a few strays at most).
+std::vector<size_t> ParallelInliers(const Stack& s, const std::vector<std::vector<size_t>>& by_patch,
                                     double nx, double ny, double band) {
-  std::vector<std::vector<std::pair<double, size_t>>> proj(static_cast<size_t>(patches));
-  for (size_t i : among) proj[s.of[i]].push_back({s.m[i].x * nx + s.m[i].y * ny, i});
   std::vector<size_t> in;
-  for (std::vector<std::pair<double, size_t>>& p : proj) {
-    if (p.empty()) continue;
+  std::vector<std::pair<double, size_t>> p;
+  for (const std::vector<size_t>& crossings : by_patch) {
+    if (crossings.empty()) continue;
+    p.clear();
+    for (size_t i : crossings) p.push_back({s.m[i].x * nx + s.m[i].y * ny, i});
     std::sort(p.begin(), p.end());
     size_t best_lo = 0, best_count = 0;
     for (size_t lo = 0, hi = 0; lo < p.size(); ++lo) {
@@ -175,8 +183,8 @@ size_t CountIn(const Stack& s, const std::vector<size_t>& idx, int patch) {
 
 // Total least squares on parallel lines: each patch's inliers about their
 // own centroid, the scatter pooled.
-Line FitParallel(const Stack& s, const std::vector<size_t>& idx, int patches) {
-  std::vector<double> cx(patches, 0.0), cy(patches, 0.0), count(patches, 0.0);
+Line FitParallel(const Stack& s, const std::vector<size_t>& idx) {
+  std::vector<double> cx(s.patches, 0.0), cy(s.patches, 0.0), count(s.patches, 0.0);
   for (size_t i : idx) cx[s.of[i]] += s.m[i].x, cy[s.of[i]] += s.m[i].y, count[s.of[i]] += 1.0;
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (size_t i : idx) {
@@ -194,10 +202,10 @@ Line FitParallel(const Stack& s, const std::vector<size_t>& idx, int patches) {
 // crossings of one patch, each scored by the inliers of its parallel lines
 // over all patches; a direction must rest on at least two of the centre
 // patch's crossings.
-Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, int patches, double band,
+Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double band,
                         const EdgeLineOptions& o, uint64_t seed) {
   Found best;
-  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(patches));
+  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
   for (size_t i : among) by_patch[s.of[i]].push_back(i);
   if (by_patch[s.centre].size() < 2) return best;
   for (double baseline : {1.0 / 3.0, 4.0 * band}) {
@@ -210,7 +218,7 @@ Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, int pa
       const double dx = s.m[b].x - s.m[a].x, dy = s.m[b].y - s.m[a].y, len = std::hypot(dx, dy);
       if (len < baseline) continue;
       ++tried;
-      std::vector<size_t> in = ParallelInliers(s, among, patches, -dy / len, dx / len, band);
+      std::vector<size_t> in = ParallelInliers(s, by_patch, -dy / len, dx / len, band);
       if (CountIn(s, in, s.centre) < 2) continue;
       if (in.size() > best.inliers.size()) best = {true, Line{0.0, 0.0, -dy / len, dx / len}, std::move(in)};
     }
@@ -218,8 +226,8 @@ Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, int pa
   }
   if (!best.ok) return best;
   for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
-    const Line l = FitParallel(s, best.inliers, patches);
-    std::vector<size_t> in = ParallelInliers(s, among, patches, l.nx, l.ny, band);
+    const Line l = FitParallel(s, best.inliers);
+    std::vector<size_t> in = ParallelInliers(s, by_patch, l.nx, l.ny, band);
     if (CountIn(s, in, s.centre) < 2) break;
     best.line = l;
     best.inliers = std::move(in);
@@ -236,9 +244,9 @@ void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& be
   const Found first = best(all, seed);
   const double need = std::max<double>(o.min_crossings, o.min_share * k);
   if (!first.ok || first.inliers.size() < need) {
-    out->first = None("no straight edge: " + std::to_string(first.inliers.size()) + " of " +
-                      std::to_string(k) + " crossings on one line");
-    out->second = None(out->first.reason);
+    NoLines("no straight edge: " + std::to_string(first.inliers.size()) + " of " + std::to_string(k) +
+                " crossings on one line",
+            out);
     return;
   }
   out->first = Lobe(first, k);
@@ -337,8 +345,7 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const E
   out.has_second = o.second;
   const size_t n = patch.points.size();
   if (!NonConstant(patch)) {
-    out.first = None("constant patch");
-    out.second = None("constant patch");
+    NoLines("constant patch", &out);
     return out;
   }
   const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
@@ -346,8 +353,7 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const E
   const size_t k = mid.size();
   out.frequencies = k;
   if (k < static_cast<size_t>(o.min_crossings)) {
-    out.first = None("no edge: " + std::to_string(k) + " neighbouring pairs jump");
-    out.second = None(out.first.reason);
+    NoLines("no edge: " + std::to_string(k) + " neighbouring pairs jump", &out);
     return out;
   }
   const double band = o.band * spacing;
@@ -402,11 +408,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const Samp
   DirectionEstimate out;
   out.has_second = o.second;
   if (!NonConstant(*centre)) {
-    out.first = None("constant patch");
-    out.second = None("constant patch");
+    NoLines("constant patch", &out);
     return out;
   }
   Stack s;
+  s.patches = 9;
   s.centre = 4;
   for (int k = 0; k < 9; ++k) {
     if (!pixels[k] || !NonConstant(*pixels[k])) continue;
@@ -419,14 +425,13 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const Samp
   out.frequencies = k;
   const size_t own = static_cast<size_t>(std::count(s.of.begin(), s.of.end(), s.centre));
   if (own < 2 || k < static_cast<size_t>(o.min_crossings)) {
-    out.first = None("no edge: " + std::to_string(own) + " neighbouring pairs jump in the pixel");
-    out.second = None(out.first.reason);
+    NoLines("no edge: " + std::to_string(own) + " neighbouring pairs jump in the pixel", &out);
     return out;
   }
   const double band = o.band / std::sqrt(static_cast<double>(centre->points.size()));
   const uint64_t seed = HashCombine(static_cast<uint64_t>(centre->points.size()), static_cast<uint64_t>(k));
   FindLines(k, o, seed, [&](const std::vector<size_t>& among, uint64_t sd) {
-    return BestParallelLines(s, among, 9, band, o, sd);
+    return BestParallelLines(s, among, band, o, sd);
   }, &out);
   return out;
 }
