@@ -1,7 +1,5 @@
 #include <alignset/npy.h>
 
-#include <sys/stat.h>
-
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -10,6 +8,8 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+
+#include "client/whole_file.h"
 
 namespace alignset {
 namespace {
@@ -166,26 +166,7 @@ Status WriteNpy(const std::string& path, const std::vector<size_t>& shape,
   }
   std::string out = NpyHeader(shape);
   out.append(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double));
-  // A device or a pipe is written as it is: the rename below would replace
-  // it with a regular file (as root, /dev/null itself).
-  struct stat st;
-  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-    std::ofstream f(path, std::ios::binary);
-    f.write(out.data(), static_cast<std::streamsize>(out.size()));
-    return f.flush() ? Status::Ok() : Status::InvalidArgument("cannot write " + path);
-  }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) return Status::InvalidArgument("cannot write " + path);
-    f.write(out.data(), static_cast<std::streamsize>(out.size()));
-    if (!f) return Status::InvalidArgument("cannot write " + path);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
-  }
-  return Status::Ok();
+  return WriteWholeFile(path, out);
 }
 
 }  // namespace alignset

@@ -1,8 +1,5 @@
 #include "client/point_file.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +11,8 @@
 #include <sstream>
 
 #include <alignset/npy.h>
+
+#include "client/whole_file.h"
 
 namespace alignset::cli {
 namespace {
@@ -91,30 +90,7 @@ Status WriteAll(const std::string& path, const std::string& data) {
     }
     return Status::Ok();
   }
-  // A device or a pipe (-o /dev/null) is written as it is: the rename below
-  // would replace it with a regular file (as root, /dev/null itself).
-  struct stat st;
-  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-    FILE* f = std::fopen(path.c_str(), "wb");
-    if (!f) return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
-    const bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size();
-    if (std::fclose(f) != 0 || !ok) {
-      return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
-    }
-    return Status::Ok();
-  }
-  const std::string tmp = path + ".tmp." + std::to_string(getpid());
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) return Status::InvalidArgument("cannot write " + path + ": " + std::strerror(errno));
-  const bool ok = std::fwrite(data.data(), 1, data.size(), f) == data.size() && std::fflush(f) == 0 &&
-                  fsync(fileno(f)) == 0;
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    return Status::InvalidArgument("cannot write " + path + ": " + why);
-  }
-  return Status::Ok();
+  return WriteWholeFile(path, data);
 }
 
 // ------------------------------------------------------------------- read
