@@ -571,10 +571,13 @@ int Main(int argc, char** argv) {
         csv.flush();
         // The image-N grids, and every N >= 256 of the samplers the
         // acceptance table compares (plot_render.py bootstraps its ratios
-        // over their edge pixels).
-        const bool compared = n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
-                                           v.sampler == "aligned-lattice" || v.label == "rank1-lattice" ||
-                                           v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
+        // over their edge pixels; pixel_split.py splits them by pixel type
+        // and by what the estimate made of the pixel).
+        const bool compared =
+            n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
+                         v.sampler == "aligned-lattice" || v.label == "aligned-lattice-exact" ||
+                         v.label == "rank1-lattice" || v.label == "screen-space-rank1" ||
+                         v.label == "pmj02bn" || v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
         if (compared || std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {
           WriteNpy(out + "/images/" + d.scene.name() + "_" + v.label + "_n" + std::to_string(n) + ".npy",
                    {size_t(d.scene.height()), size_t(d.scene.width())}, img);
