@@ -387,7 +387,7 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
   }
   EdgeLineOptions o = options;
   o.focus = true;
-  const double inset = 1.0 / std::sqrt(static_cast<double>(centre->points.size()));
+  const double inset = kPooledFocusInset / std::sqrt(static_cast<double>(centre->points.size()));
   o.focus_x0 = o.focus_y0 = (margin + inset) / side;
   o.focus_x1 = o.focus_y1 = (1.0 + margin - inset) / side;
   return EstimateEdgeLines(pooled, o);
