@@ -57,24 +57,27 @@ struct EdgeLineOptions {
 StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch,
                                               const EdgeLineOptions& options = {});
 
+// The inset of EstimateEdgeLinesPooled's focus box, in sample spacings
+// (1/sqrt(M) for M samples per pixel). A crossing's midpoint between a
+// sample inside the pixel and one in the neighbour can lie inside the pixel
+// though the edge does not: without an inset smooth pixels beside an edge
+// were given directions (on antialias, N = 256, their squared error 3.7x
+// Owen-Sobol's at the same N). A whole spacing lost the edges that run near
+// the pixel's border. At half a spacing 2 of 80781 smooth pixels took a
+// direction (their error unchanged), and aligned lattices' edge error fell
+// 4-12% at N = 256 on each of six scene seeds and 0.5-13% at 1024 and 4096
+// (docs/rendering.md).
+inline constexpr double kPooledFocusInset = 0.5;
+
 // A pixel's fit from its own samples and its neighbours' (the renderer's
 // nedgesM pre-pass): an edge runs on into the next pixel, so its line is
 // better placed by the crossings on either side. `pixels` holds the 3 x 3
 // block row by row, the centre at [4], each patch in its own pixel's
 // [0,1]^2 (nullptr where the image ends); the samples within `margin`
 // pixel widths of the centre pixel are scaled onto the unit square, and
-// the options gain a focus box on the centre pixel inset by
-// kPooledFocusInset sample spacings (a spacing is 1/sqrt(M) for M samples
-// per pixel): a crossing's midpoint between a sample inside and one in the
-// neighbour can lie inside the pixel though the edge does not, and without
-// an inset smooth pixels beside an edge were given directions (on
-// antialias, N = 256, their squared error 3.7x Owen-Sobol's at the same N).
-// A whole spacing lost the edges that run near the pixel's border: at half
-// a spacing the smooth pixels keep no direction, and aligned lattices'
-// edge error fell 4-12% at N = 256 on each of six scene seeds and 0.5-13%
-// at 1024 and 4096 (docs/rendering.md). INVALID_ARGUMENT for a missing
-// centre, a margin outside (0, 1] or what EstimateEdgeLines refuses.
-inline constexpr double kPooledFocusInset = 0.5;
+// the options gain a focus box on the centre pixel, inset by
+// kPooledFocusInset sample spacings. INVALID_ARGUMENT for a missing centre,
+// a margin outside (0, 1] or what EstimateEdgeLines refuses.
 StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
                                                     double margin, const EdgeLineOptions& options = {});
 
