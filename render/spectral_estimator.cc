@@ -15,7 +15,11 @@
 namespace alignset::render {
 
 std::string Prepass::Name() const {
-  const std::string floor = min_confidence_pct > 0 ? "c" + std::to_string(min_confidence_pct) : "";
+  std::string floor;
+  if (kind == Kind::kPooledEdgeLines && stack_radius != kDefaultStackRadius) {
+    floor.append("s").append(std::to_string(stack_radius));
+  }
+  if (min_confidence_pct > 0) floor.append("c").append(std::to_string(min_confidence_pct));
   switch (kind) {
     case Kind::kGrid: return "grid" + std::to_string(count) + floor;
     case Kind::kJitteredGrid: return "jgrid" + std::to_string(count) + floor;
@@ -29,7 +33,9 @@ std::string Prepass::Name() const {
 StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   auto refuse = [&] {
     return Status::InvalidArgument("pre-pass must be gridG or jgridG (G in [8, 64]) or samplesM, "
-                                   "edgesM or nedgesM (M in [16, 4096]), optionally followed by cP (a "
+                                   "edgesM or nedgesM (M in [16, 4096]; nedgesM optionally followed by sR, "
+                                   "a stack of (2R + 1)^2 pixels on a shared domain, R in [1, " +
+                                   std::to_string(kMaxStackRadius) + "]), optionally followed by cP (a "
                                    "confidence floor of P percent), got '" + spec + "'");
   };
   // 1 to 5 digits, or -1.
@@ -68,7 +74,13 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
     return refuse();
   }
   const size_t c = rest.find('c');
-  p.count = digits(rest.substr(0, c));
+  const size_t r = rest.find('s');
+  if (r != std::string::npos) {
+    if (p.kind != Prepass::Kind::kPooledEdgeLines || (c != std::string::npos && c < r)) return refuse();
+    p.stack_radius = digits(rest.substr(r + 1, c == std::string::npos ? std::string::npos : c - r - 1));
+    if (p.stack_radius < 1 || p.stack_radius > kMaxStackRadius) return refuse();
+  }
+  p.count = digits(rest.substr(0, std::min(r, c)));
   if (c != std::string::npos) {
     p.min_confidence_pct = digits(rest.substr(c + 1));
     if (p.min_confidence_pct < 0 || p.min_confidence_pct > 100) return refuse();
@@ -78,7 +90,7 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
 }
 
 std::string AutoPrepass(uint32_t n) {
-  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256));
+  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256)) + (n <= 1024 ? "s2" : "");
 }
 
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {
@@ -137,14 +149,17 @@ class SpectralEstimator : public DirectionEstimator {
     if (p_.kind != Prepass::Kind::kPooledEdgeLines) {
       return DirectionEstimator::EstimateScene(scene, seed, threads);
     }
-    // Row by row, keeping the pre-passes of three rows only (y - 1, y and
-    // y + 1: what the fit reads), so that memory stays a few rows of M
-    // samples however large the image: rows[k] holds row y - 1 + k, empty
-    // beyond the image.
+    // Row by row, keeping the pre-passes of the rows the fit reads only
+    // (y - R ... y + R), so that memory stays a few rows of M samples
+    // however large the image: rows[k] holds row y - R + k, empty beyond
+    // the image.
     constexpr double kMargin = 0.5, kAgreeDeg = 8.0;
+    const bool shared = scene.domain() == PixelDomain::kShared;
+    const int radius = shared ? p_.stack_radius : 1;
+    const int side = 2 * radius + 1;
     const int w = scene.width(), hgt = scene.height();
     std::vector<PixelDirection> out(scene.size());
-    std::array<std::vector<SampledPatch>, 3> rows;
+    std::vector<std::vector<SampledPatch>> rows(static_cast<size_t>(side));
     // Every pixel's own pre-pass and its own fit.
     auto sample_row = [&](int y, std::vector<SampledPatch>& row) {
       row.assign(static_cast<size_t>(w), SampledPatch{});
@@ -155,13 +170,10 @@ class SpectralEstimator : public DirectionEstimator {
         out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
       });
     };
-    sample_row(0, rows[1]);
+    for (int k = radius; k < side; ++k) {
+      if (k - radius < hgt) sample_row(k - radius, rows[static_cast<size_t>(k)]);
+    }
     for (int y = 0; y < hgt; ++y) {
-      if (y + 1 < hgt) {
-        sample_row(y + 1, rows[2]);
-      } else {
-        rows[2].clear();
-      }
       // The pixel and its neighbours (core/analysis/edge_line_fit.h): on
       // pixel footprints, the samples within half a pixel and lines that
       // cross the pixel; on a domain every pixel shares (the shadow's
@@ -169,17 +181,22 @@ class SpectralEstimator : public DirectionEstimator {
       // each, all parallel (read as footprints, their edges did not line
       // up, and pooling had left the shadow's directions where the pixel's
       // own 64 samples put them: a median 2.2 degrees off).
-      const bool shared = scene.domain() == PixelDomain::kShared;
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
         const size_t i = static_cast<size_t>(y) * w + x;
-        std::array<const SampledPatch*, 9> block{};
-        for (int k = 0; k < 9; ++k) {
-          const std::vector<SampledPatch>& row = rows[k / 3];
-          const int u = static_cast<int>(x) + k % 3 - 1;
-          if (!row.empty() && u >= 0 && u < w) block[k] = &row[u];
+        std::vector<const SampledPatch*> block(static_cast<size_t>(side * side), nullptr);
+        for (int k = 0; k < side * side; ++k) {
+          const std::vector<SampledPatch>& row = rows[static_cast<size_t>(k / side)];
+          const int u = static_cast<int>(x) + k % side - radius;
+          if (!row.empty() && u >= 0 && u < w) block[static_cast<size_t>(k)] = &row[u];
         }
-        const StatusOr<DirectionEstimate> e =
-            shared ? EstimateEdgeLinesStacked(block, lines_) : EstimateEdgeLinesPooled(block, kMargin, lines_);
+        StatusOr<DirectionEstimate> e = Status::InvalidArgument("unset");
+        if (shared) {
+          e = EstimateEdgeLinesStacked(block, lines_);
+        } else {
+          std::array<const SampledPatch*, 9> nine{};
+          std::copy(block.begin(), block.end(), nine.begin());
+          e = EstimateEdgeLinesPooled(nine, kMargin, lines_);
+        }
         if (!e.ok()) {
           refused_.fetch_add(1, std::memory_order_relaxed);
           return;
@@ -202,9 +219,9 @@ class SpectralEstimator : public DirectionEstimator {
         d.prepass_seed = out[i].prepass_seed;
         out[i] = d;
       });
-      rows[0] = std::move(rows[1]);
-      rows[1] = std::move(rows[2]);
-      rows[2] = {};
+      for (int k = 0; k + 1 < side; ++k) rows[static_cast<size_t>(k)] = std::move(rows[static_cast<size_t>(k + 1)]);
+      rows[static_cast<size_t>(side - 1)] = {};
+      if (y + radius + 1 < hgt) sample_row(y + radius + 1, rows[static_cast<size_t>(side - 1)]);
     }
     return out;
   }

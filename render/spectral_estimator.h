@@ -33,8 +33,9 @@ namespace alignset::render {
 //                in the image plane, the samples within half a pixel (about
 //                4M), looking only for lines that cross the pixel; where
 //                every pixel integrates over one shared square (the shadow's
-//                light, Scene::domain()), the 3 x 3 pixels' samples stacked,
-//                one parallel line each (EstimateEdgeLinesStacked); the
+//                light, Scene::domain()), the 3 x 3 pixels' samples stacked
+//                (a suffix sR: the (2R + 1)^2 around it), one parallel line
+//                each (EstimateEdgeLinesStacked); the
 //                pixel's own fit where that finds nothing or, on
 //                footprints, where the two disagree by more than 8
 //                degrees. The pixel pays M evaluations, as with edgesM,
@@ -55,11 +56,29 @@ namespace alignset::render {
 // grid shifted as a whole by one random offset, which would keep the grid
 // path, errs to first order in the offset on a pixel that is not periodic
 // (20 and 10^5 times), so neither is offered for reuse.
+// How far nedgesM's stack reaches on a shared domain: the (2R + 1)^2 pixels
+// around the pixel, R = 1 unless a suffix sR asks for more. A neighbour
+// sees the same edges at another offset, so more of them place the edges
+// better, most of all the two of a corner, which the pixel's own 64
+// samples rarely separate; but a farther neighbour also sees them turned a
+// little more (the occluder's projection tilts with the receiver point),
+// which costs where the set is most sensitive to the angle. Aligned
+// lattices' edge error on the shadow scene against R = 1
+// (bench/results/render_stack_radius.md): at N = 256 + 64 (seeds 1-6)
+// -5.1% at R = 2 (every seed, -2.0 to -8.9%), -5.9% at R = 3, -7.3% at
+// R = 4; at 1024 + 256 (seeds 1-3) -3.9% at R = 2 and -3.1% at R = 3; at
+// 4096 + 256 +2.0% at R = 2 (-0.5 to +5.9%). The fit's time grows with the block (at
+// M = 64, 16384 pixels, two threads: 3.7, 8.6, 15.5, 23.6 s for R = 1..4).
+// AutoPrepass takes R = 2 up to N = 1024.
+inline constexpr int kDefaultStackRadius = 1;
+inline constexpr int kMaxStackRadius = 4;
+
 struct Prepass {
   enum class Kind { kGrid, kJitteredGrid, kSamples, kEdgeLines, kPooledEdgeLines };
   Kind kind = Kind::kGrid;
   int count = 16;            // the grid side G, or the sample count M
   int min_confidence_pct = 0;
+  int stack_radius = kDefaultStackRadius;  // nedgesM on a shared domain
   std::string Name() const;
   bool Scattered() const {
     return kind == Kind::kSamples || kind == Kind::kEdgeLines || kind == Kind::kPooledEdgeLines;
@@ -71,8 +90,9 @@ struct Prepass {
 };
 
 // INVALID_ARGUMENT for anything but gridG / jgridG (8 <= G <= 64) or
-// samplesM / edgesM / nedgesM (16 <= M <= 4096), each with an optional cP
-// (0 <= P <= 100).
+// samplesM / edgesM / nedgesM (16 <= M <= 4096), nedgesM with an optional
+// sR (1 <= R <= kMaxStackRadius), each with an optional cP (0 <= P <= 100)
+// after it.
 StatusOr<Prepass> ParsePrepass(const std::string& spec);
 
 // The default pre-pass of the estimated samplers in the benchmarks: 256
@@ -89,7 +109,8 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec);
 inline constexpr const char* kDefaultPrepass = "nedges256";
 // `alignset render`'s default, "auto": the pooled edge-line fit on a
 // quarter of the sampler's N, at least 16 and at most 256 samples (nedges64
-// at N = 256, nedges256 from N = 1024 on). The quarter was measured with
+// at N = 256, nedges256 from N = 1024 on), stacked over 5 x 5 pixels (s2)
+// up to N = 1024 and over 3 x 3 above (kDefaultStackRadius's measurements). The quarter was measured with
 // the pixel's own samples on the three scene seeds with aligned lattices:
 // at N = 256, edges64 is 1.7-2.1x below Owen-Sobol at the same total (320)
 // where edges256 is 1.2-1.4x (at 512), and a sweep of 32, 64 and 128

@@ -393,9 +393,16 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
   return EstimateEdgeLines(pooled, o);
 }
 
-StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const SampledPatch*>& pixels,
                                                      const EdgeLineOptions& o) {
-  const SampledPatch* centre = pixels[4];
+  const size_t count = pixels.size();
+  const size_t side = static_cast<size_t>(std::lround(std::sqrt(static_cast<double>(count))));
+  if (side * side != count || side % 2 == 0) {
+    return Status::InvalidArgument("stacked edge lines: the block must be an odd square (3 x 3, 5 x 5, ...), got " +
+                                   std::to_string(count) + " pixels");
+  }
+  const int centre_index = static_cast<int>(count / 2);
+  const SampledPatch* centre = pixels[static_cast<size_t>(centre_index)];
   if (!centre) return Status::InvalidArgument("stacked edge lines: no centre pixel");
   if (Status s = ValidateOptions(o); !s.ok()) return s;
   for (const SampledPatch* p : pixels) {
@@ -412,11 +419,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const Samp
     return out;
   }
   Stack s;
-  s.patches = 9;
-  s.centre = 4;
-  for (int k = 0; k < 9; ++k) {
-    if (!pixels[k] || !NonConstant(*pixels[k])) continue;
-    for (const Point2& m : Crossings(*pixels[k], o)) {
+  s.patches = static_cast<int>(count);
+  s.centre = centre_index;
+  for (int k = 0; k < s.patches; ++k) {
+    if (!pixels[static_cast<size_t>(k)] || !NonConstant(*pixels[static_cast<size_t>(k)])) continue;
+    for (const Point2& m : Crossings(*pixels[static_cast<size_t>(k)], o)) {
       s.m.push_back(m);
       s.of.push_back(k);
     }
@@ -434,6 +441,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const Samp
     return BestParallelLines(s, among, band, o, sd);
   }, &out);
   return out;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
+                                                     const EdgeLineOptions& o) {
+  return EstimateEdgeLinesStacked(std::vector<const SampledPatch*>(pixels.begin(), pixels.end()), o);
 }
 
 }  // namespace alignset

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/analysis/direction_estimate.h"
 #include "core/analysis/patch_spectrum.h"
@@ -95,6 +96,10 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
 // the shares over all patches' crossings. INVALID_ARGUMENT for a missing
 // centre, an invalid patch or options out of range.
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
+                                                     const EdgeLineOptions& options = {});
+// The same over a larger odd square block (5 x 5, ...), row by row, the
+// centre in the middle.
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const SampledPatch*>& pixels,
                                                      const EdgeLineOptions& options = {});
 
 }  // namespace alignset

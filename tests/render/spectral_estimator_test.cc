@@ -19,7 +19,7 @@ namespace {
 TEST(SpectralEstimator, ParsesThePrepassAndRefusesWhatItCannotTake) {
   for (const char* good : {"grid16", "jgrid8", "grid64", "samples16", "samples256", "samples4096",
                            "grid16c50", "samples256c100", "jgrid16c5", "edges64", "nedges64",
-                           "nedges4096c50"}) {
+                           "nedges4096c50", "nedges64s2", "nedges64s4c20"}) {
     auto p = ParsePrepass(good);
     ASSERT_TRUE(p.ok()) << good << ": " << p.status().message();
     EXPECT_EQ(p->Name(), good);
@@ -31,9 +31,15 @@ TEST(SpectralEstimator, ParsesThePrepassAndRefusesWhatItCannotTake) {
   EXPECT_EQ(ParsePrepass("grid16c50")->min_confidence_pct, 50);
   EXPECT_EQ(ParsePrepass("grid16c50")->Evaluations(), 256);
   EXPECT_EQ(ParsePrepass("grid16c0")->Name(), "grid16");
+  EXPECT_EQ(ParsePrepass("nedges64")->stack_radius, kDefaultStackRadius);
+  EXPECT_EQ(ParsePrepass("nedges64s3c20")->stack_radius, 3);
+  EXPECT_EQ(ParsePrepass("nedges64s3c20")->min_confidence_pct, 20);
+  EXPECT_EQ(ParsePrepass("nedges64s" + std::to_string(kDefaultStackRadius))->Name(), "nedges64");
   for (const char* bad : {"", "grid", "grid4", "grid65", "jgrid", "samples8", "samples5000",
                           "grid16x", "grid-16", "placeholder8", "samples 64", "grid16c", "grid16c101",
-                          "grid16c-1", "c50", "grid16c50c5", "nedges8", "nedges", "nedge64", "xnedges64"}) {
+                          "grid16c-1", "c50", "grid16c50c5", "nedges8", "nedges", "nedge64", "xnedges64",
+                          "nedges64s0", "nedges64s5", "nedges64s", "edges64s2", "samples64s1", "nedges64c20s2",
+                          "nedgess2", "nedges64s2s2"}) {
     auto p = ParsePrepass(bad);
     EXPECT_FALSE(p.ok()) << bad;
     if (!p.ok()) {
@@ -59,12 +65,13 @@ std::vector<size_t> CleanEdgePixels(const Scene& s, const std::vector<PixelDirec
   return out;
 }
 
-TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256) {
-  EXPECT_EQ(AutoPrepass(16), "nedges16");
-  EXPECT_EQ(AutoPrepass(64), "nedges16");
-  EXPECT_EQ(AutoPrepass(256), "nedges64");
-  EXPECT_EQ(AutoPrepass(1000), "nedges250");
-  EXPECT_EQ(AutoPrepass(1024), "nedges256");
+TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256StackedWiderUpTo1024) {
+  EXPECT_EQ(AutoPrepass(16), "nedges16s2");
+  EXPECT_EQ(AutoPrepass(64), "nedges16s2");
+  EXPECT_EQ(AutoPrepass(256), "nedges64s2");
+  EXPECT_EQ(AutoPrepass(1000), "nedges250s2");
+  EXPECT_EQ(AutoPrepass(1024), "nedges256s2");
+  EXPECT_EQ(AutoPrepass(1025), "nedges256");
   EXPECT_EQ(AutoPrepass(65536), "nedges256");
   for (uint32_t n : {1u, 16u, 256u, 4096u}) {
     auto p = ParsePrepass(AutoPrepass(n));
@@ -187,6 +194,53 @@ TEST(SpectralEstimator, PoolingTheNeighboursSharpensTheDirectionAndKeepsThePixel
     // own fit put it.
     EXPECT_LT(err_b[err_b.size() / 2], 0.6 * err_a[err_a.size() / 2]) << name;
   }
+}
+
+// On the shadow scene (a shared domain) the wider stack of nedges64s2
+// reads more neighbours: its one-edge pixels' directions must be closer to
+// the geometry's than the 3 x 3 stack's, it must read at least as many
+// two-edge corners as two within a few degrees, and each pixel keeps its own
+// samples for reuse.
+TEST(SpectralEstimator, AWiderStackPlacesTheSharedDomainsEdgesBetter) {
+  const Scene scene = *MakeScene("shadow", 96, 96, 3);
+  const std::vector<PixelDirection> exact = GeometryDirections(scene);
+  const std::vector<PixelClass> classes = scene.Classes();
+  const auto three = MakeSpectralEstimator(*ParsePrepass("nedges64"));
+  const auto five = MakeSpectralEstimator(*ParsePrepass("nedges64s2"));
+  const std::vector<PixelDirection> a = EstimateDirections(scene, *three, 5, 2);
+  const std::vector<PixelDirection> b = EstimateDirections(scene, *five, 5, 2);
+  std::vector<double> err_a, err_b;
+  int corners = 0, corners_a = 0, corners_b = 0;
+  auto corner_ok = [](const PixelDirection& e, const PixelDirection& g) {
+    if (e.kind != PixelDirection::Kind::kTwo) return false;
+    const double straight = std::max(AxialDistanceDeg(e.theta1, g.theta1), AxialDistanceDeg(e.theta2, g.theta2));
+    const double crossed = std::max(AxialDistanceDeg(e.theta1, g.theta2), AxialDistanceDeg(e.theta2, g.theta1));
+    return std::min(straight, crossed) < 3.0;
+  };
+  for (size_t i = 0; i < scene.size(); ++i) {
+    EXPECT_EQ(a[i].prepass_mean, b[i].prepass_mean) << i;
+    if (classes[i] != PixelClass::kEdge) continue;
+    if (exact[i].kind == PixelDirection::Kind::kTwo) {
+      ++corners;
+      corners_a += corner_ok(a[i], exact[i]);
+      corners_b += corner_ok(b[i], exact[i]);
+      continue;
+    }
+    if (exact[i].kind != PixelDirection::Kind::kOne) continue;
+    err_a.push_back(a[i].kind != PixelDirection::Kind::kNone ? AxialDistanceDeg(a[i].theta1, exact[i].theta1) : 90.0);
+    err_b.push_back(b[i].kind != PixelDirection::Kind::kNone ? AxialDistanceDeg(b[i].theta1, exact[i].theta1) : 90.0);
+  }
+  EXPECT_EQ(five->refusals(), 0);
+  std::sort(err_a.begin(), err_a.end());
+  std::sort(err_b.begin(), err_b.end());
+  ASSERT_FALSE(err_a.empty());
+  const size_t p75 = err_a.size() * 3 / 4;
+  std::printf("shadow, one edge: 3 x 3 median %.2f p75 %.2f, 5 x 5 median %.2f p75 %.2f degrees; two-edge corners "
+              "read as two within 3 degrees: %d and %d of %d\n", err_a[err_a.size() / 2], err_a[p75],
+              err_b[err_b.size() / 2], err_b[p75], corners_a, corners_b, corners);
+  EXPECT_LT(err_b[err_b.size() / 2], err_a[err_a.size() / 2]);
+  EXPECT_LT(err_b[p75], err_a[p75]);
+  EXPECT_GE(corners_b, corners_a);
 }
 
 }  // namespace
