@@ -104,6 +104,15 @@ StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {
 
 namespace {
 
+// A second line (a corner's other edge) needs 15% of the crossings, not the
+// fit's default 25%: pooled or stacked, a corner's shorter edge still holds
+// many of them. Aligned lattices' edge MSE with the auto pre-pass (nedgesM,
+// stacked 5 x 5): at N = 256 + 64 (seeds 1-6) shadow -1.8% (every seed,
+// 0.1-3.5%), antialias +0.1%; at 1024 + 256 (seeds 1-3) -1.5% on both
+// scenes; at 4096 nothing changes (one-direction sets there); 0.08 was no
+// better (bench/results/render_stack_radius.md).
+constexpr double kPrepassSecondLineShare = 0.15;
+
 PixelDirection FromEstimate(const DirectionEstimate& e, int min_confidence_pct) {
   PixelDirection d;
   if (e.first.status != DirectionStatus::kFound) return d;
@@ -125,6 +134,7 @@ class SpectralEstimator : public DirectionEstimator {
   explicit SpectralEstimator(const Prepass& p) : p_(p) {
     options_.second = true;
     lines_.second = true;
+    lines_.second_min_share = kPrepassSecondLineShare;
   }
   std::string name() const override {
     const bool lines =
