@@ -199,14 +199,14 @@ class SpectralEstimator : public DirectionEstimator {
           const int u = static_cast<int>(x) + k % side - radius;
           if (!row.empty() && u >= 0 && u < w) block[static_cast<size_t>(k)] = &row[u];
         }
-        StatusOr<DirectionEstimate> e = Status::InvalidArgument("unset");
-        if (shared) {
-          e = EstimateEdgeLinesStacked(block, lines_);
-        } else {
+        // Footprints are pooled from the 3 x 3 only (side is 3 there).
+        auto three_by_three = [&] {
           std::array<const SampledPatch*, 9> nine{};
           std::copy(block.begin(), block.end(), nine.begin());
-          e = EstimateEdgeLinesPooled(nine, kMargin, lines_);
-        }
+          return nine;
+        };
+        const StatusOr<DirectionEstimate> e = shared ? EstimateEdgeLinesStacked(block, lines_)
+                                                     : EstimateEdgeLinesPooled(three_by_three(), kMargin, lines_);
         if (!e.ok()) {
           refused_.fetch_add(1, std::memory_order_relaxed);
           return;

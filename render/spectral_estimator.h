@@ -8,6 +8,23 @@
 
 namespace alignset::render {
 
+// How far nedgesM's stack reaches on a shared domain: the (2R + 1)^2 pixels
+// around the pixel, R = 1 unless a suffix sR asks for more. A neighbour
+// sees the same edges at another offset, so more of them place the edges
+// better, most of all the two of a corner, which the pixel's own 64
+// samples rarely separate; but a farther neighbour also sees them turned a
+// little more (the occluder's projection tilts with the receiver point),
+// which costs where the set is most sensitive to the angle. Aligned
+// lattices' edge error on the shadow scene against R = 1
+// (bench/results/render_stack_radius.md): at N = 256 + 64 (seeds 1-6)
+// -5.1% at R = 2 (every seed, -2.0 to -8.9%), -5.9% at R = 3, -7.3% at
+// R = 4; at 1024 + 256 (seeds 1-3) -3.9% at R = 2 and -3.1% at R = 3; at
+// 4096 + 256 +2.0% at R = 2 (-0.5 to +5.9%). The fit's time grows with the
+// block (M = 64, 16384 pixels, two threads: 3.7, 8.6, 15.5, 23.6 s for
+// R = 1..4). AutoPrepass takes R = 2 up to N = 1024.
+inline constexpr int kDefaultStackRadius = 1;
+inline constexpr int kMaxStackRadius = 4;
+
 // The estimator of record for the `aligned` sampler: a low-spp pre-pass of
 // the pixel's integrand handed to core/analysis's EstimateDirection (issue
 // 12: windowed patch power spectrum, line energy, von Mises fit, contrast
@@ -56,23 +73,6 @@ namespace alignset::render {
 // grid shifted as a whole by one random offset, which would keep the grid
 // path, errs to first order in the offset on a pixel that is not periodic
 // (20 and 10^5 times), so neither is offered for reuse.
-// How far nedgesM's stack reaches on a shared domain: the (2R + 1)^2 pixels
-// around the pixel, R = 1 unless a suffix sR asks for more. A neighbour
-// sees the same edges at another offset, so more of them place the edges
-// better, most of all the two of a corner, which the pixel's own 64
-// samples rarely separate; but a farther neighbour also sees them turned a
-// little more (the occluder's projection tilts with the receiver point),
-// which costs where the set is most sensitive to the angle. Aligned
-// lattices' edge error on the shadow scene against R = 1
-// (bench/results/render_stack_radius.md): at N = 256 + 64 (seeds 1-6)
-// -5.1% at R = 2 (every seed, -2.0 to -8.9%), -5.9% at R = 3, -7.3% at
-// R = 4; at 1024 + 256 (seeds 1-3) -3.9% at R = 2 and -3.1% at R = 3; at
-// 4096 + 256 +2.0% at R = 2 (-0.5 to +5.9%). The fit's time grows with the block (at
-// M = 64, 16384 pixels, two threads: 3.7, 8.6, 15.5, 23.6 s for R = 1..4).
-// AutoPrepass takes R = 2 up to N = 1024.
-inline constexpr int kDefaultStackRadius = 1;
-inline constexpr int kMaxStackRadius = 4;
-
 struct Prepass {
   enum class Kind { kGrid, kJitteredGrid, kSamples, kEdgeLines, kPooledEdgeLines };
   Kind kind = Kind::kGrid;

@@ -421,11 +421,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Sam
   Stack s;
   s.patches = static_cast<int>(count);
   s.centre = centre_index;
-  for (int k = 0; k < s.patches; ++k) {
-    if (!pixels[static_cast<size_t>(k)] || !NonConstant(*pixels[static_cast<size_t>(k)])) continue;
-    for (const Point2& m : Crossings(*pixels[static_cast<size_t>(k)], o)) {
+  for (size_t k = 0; k < count; ++k) {
+    if (!pixels[k] || !NonConstant(*pixels[k])) continue;
+    for (const Point2& m : Crossings(*pixels[k], o)) {
       s.m.push_back(m);
-      s.of.push_back(k);
+      s.of.push_back(static_cast<int>(k));
     }
   }
   const size_t k = s.m.size();
