@@ -110,7 +110,9 @@ namespace {
 // stacked 5 x 5): at N = 256 + 64 (seeds 1-6) shadow -1.8% (every seed,
 // 0.1-3.5%), antialias +0.1%; at 1024 + 256 (seeds 1-3) -1.5% on both
 // scenes; at 4096 nothing changes (one-direction sets there); 0.08 was no
-// better (bench/results/render_stack_radius.md).
+// better (bench/results/render_stack_radius.md). It holds for every
+// edge-line fit here, the pixel's own (edgesM, and nedgesM's fallback)
+// included; edgesM alone was not re-measured with it.
 constexpr double kPrepassSecondLineShare = 0.15;
 
 PixelDirection FromEstimate(const DirectionEstimate& e, int min_confidence_pct) {
