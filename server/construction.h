@@ -24,11 +24,11 @@ enum class Construction { kOptimized, kLattice, kNet };
 // The lattice construction's version (bump it, and kLatticeProfile with it,
 // whenever ChooseAlignedLatticeGenerator or Rank1LatticePoints would give a
 // different set for the same key) and its window.
-inline constexpr int kLatticeAlgorithmVersion = 1;
+inline constexpr int kLatticeAlgorithmVersion = 2;
 inline constexpr double kLatticeWindowDeg = 1.0;
 // The profile of every lattice key: "lattice", the version, the window in
 // degrees. Not a hex id, so no optimizer profile can ever equal it.
-inline constexpr const char* kLatticeProfile = "lattice-v1-w1";
+inline constexpr const char* kLatticeProfile = "lattice-v2-w1";
 // The net construction's version, window and profile, in the same way.
 inline constexpr int kNetAlgorithmVersion = 1;
 inline constexpr double kNetWindowDeg = 1.0;

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/analysis/convex_polygon.h"
+#include "core/analysis/integer_indicator_spectrum.h"
 #include "core/analysis/lattice_variance.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/direction_budget.h"
@@ -27,15 +28,24 @@ constexpr double kCornerWeight = 0.5;
 // The window is sampled at 2 kWindowSteps + 1 angles.
 constexpr int kWindowSteps = 4;
 constexpr uint32_t kFullSearchLimit = 65536;
+// A family's coefficient tables may take this much memory (a two-direction
+// family at N = 32768 takes 56 MB); above it the vertices' factors are
+// computed on the spot.
+constexpr double kMaxTableBytes = 64e6;
 
 struct Family {
-  std::vector<IndicatorSpectrum> edges;
+  std::vector<IntegerIndicatorSpectrum> edges;
 };
 
 // The edges scored: for each direction, 2 steps + 1 normals across the
-// window, each through `offsets` of the kEdgeOffsets.
+// window, each through `offsets` of the kEdgeOffsets; their coefficients
+// tabulated for the dual points within `radius`.
 Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg, int steps,
-                    size_t offsets) {
+                    size_t offsets, int radius) {
+  // Each edge's square has two vertices off the corners, one table each.
+  const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets * 2.0 *
+                       (2.0 * radius + 1.0) * sizeof(std::complex<double>);
+  const bool tabulate = bytes <= kMaxTableBytes;
   Family f;
   for (double d : directions_deg) {
     for (int k = -steps; k <= steps; ++k) {
@@ -45,7 +55,7 @@ Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg
         const double offset = kEdgeOffsets[o];
         const double c = 0.5 * (n.x + n.y) + offset;
         Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
-        if (SignedArea(p) > 1e-12) f.edges.emplace_back(p);
+        if (SignedArea(p) > 1e-12) f.edges.emplace_back(p, radius, tabulate);
       }
     }
   }
@@ -62,7 +72,7 @@ double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
   for (const Frequency& h : dual) {
     const double hx = h.a, hy = h.b;
     for (size_t k = 0; k < family.edges.size(); ++k) {
-      edge_sum[k] += family.edges[k].Energy(hx, hy);
+      edge_sum[k] += family.edges[k].Energy(h.a, h.b);
     }
     // (x - 1/2)(y - 1/2): coefficients i/(2 pi a) * i/(2 pi b) off the axes.
     if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
@@ -79,6 +89,13 @@ double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
   return score + kCornerWeight * std::log(2.0 * corner + floor);
 }
 
+// A score rounded to 2^-30 (about 1e-9; scores are logs near -10...-40):
+// generators a symmetry makes equally good (a direction and its mirror
+// about 45 degrees swap g and its inverse) differ by rounding alone, in the
+// last digits, and rounding must not be what picks one; rounded, they tie
+// and the smaller g wins, as the header promises.
+double Quantized(double score) { return std::ldexp(std::nearbyint(std::ldexp(score, 30)), -30); }
+
 // Scores every (score, g) entry in place, on `threads` threads (0: all
 // cores); each score depends on its g alone, so the result does not depend
 // on the thread count.
@@ -91,7 +108,7 @@ void ScoreAll(uint32_t n, int radius, const Family& family, int threads,
   std::atomic<size_t> next{0};
   auto work = [&] {
     for (size_t i = next++; i < count; i = next++) {
-      (*ranked)[i].first = Score(n, (*ranked)[i].second, radius, family);
+      (*ranked)[i].first = Quantized(Score(n, (*ranked)[i].second, radius, family));
     }
   };
   std::vector<std::thread> pool;
@@ -129,11 +146,9 @@ StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
   if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
   // The first stage sees a coarse family (the window's ends and middle, two
   // offsets): it only has to keep the finalists, and it scores every g.
-  const Family coarse = ScoredFamily(directions_deg, options.window_deg, 1, 2);
-  const Family family = ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
-                                     std::size(kEdgeOffsets));
   const int r_full = static_cast<int>(n / 2);
   const int r_first = std::min(r_full, std::max(32, static_cast<int>(std::lround(8.0 * std::sqrt(n)))));
+  const Family coarse = ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
   const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
 
   std::vector<std::pair<double, uint32_t>> ranked;
@@ -147,6 +162,8 @@ StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
   std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end());
   ranked.resize(keep);
   if (r_full > r_first) {
+    const Family family = ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
+                                       std::size(kEdgeOffsets), r_full);
     ScoreAll(n, r_full, family, options.threads, &ranked);
     std::sort(ranked.begin(), ranked.end());
   }

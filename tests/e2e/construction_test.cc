@@ -33,7 +33,7 @@ namespace {
 
 const std::vector<std::string> kFlags = {"--max-iterations", "60", "--workers", "2",
                                          "--threads-per-worker", "1", "--max-n", "4096"};
-constexpr const char* kLatticeProfile = "lattice-v1-w1";
+constexpr const char* kLatticeProfile = "lattice-v2-w1";
 
 AlignedSet MustGet(ServiceClient& client, uint32_t n, double dir, const std::string& construction,
                    uint32_t realization = 0) {
@@ -140,7 +140,7 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   EXPECT_EQ(first.info.iterations, 0);
   EXPECT_EQ(first.info.loss_total, 0.0);
   EXPECT_EQ(first.info.seed, 0u);
-  EXPECT_EQ(first.info.algorithm_version, 1);
+  EXPECT_EQ(first.info.algorithm_version, 2);  // kLatticeAlgorithmVersion
   EXPECT_FALSE(first.info.from_cache);
 
   const AlignedSet second = MustGet(*client, n, 30.0, "lattice");

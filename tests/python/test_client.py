@@ -98,7 +98,7 @@ class ServerTest(unittest.TestCase):
     def test_lattice_construction(self):
         s = self.client.get_set(256, 30, construction="lattice")
         self.assertEqual(s.metadata.construction, "lattice")
-        self.assertEqual(s.metadata.key.profile, "lattice-v1-w1")
+        self.assertEqual(s.metadata.key.profile, "lattice-v2-w1")
         # A centred N-rooks set: one point in the middle of each column and row.
         cells = s.points * 256 - 0.5
         np.testing.assert_allclose(cells, np.round(cells), atol=1e-9)
@@ -110,7 +110,7 @@ class ServerTest(unittest.TestCase):
         # The optimized set of the same key is another set under another profile.
         optimized = self.client.get_set(256, 30)
         self.assertEqual(optimized.metadata.construction, "optimized")
-        self.assertNotEqual(optimized.metadata.key.profile, "lattice-v1-w1")
+        self.assertNotEqual(optimized.metadata.key.profile, "lattice-v2-w1")
         self.assertFalse(np.array_equal(optimized.points, s.points))
         space = self.client.get_space(32, construction="lattice")
         self.assertEqual(space.shape, (46, 32, 2))

@@ -45,7 +45,7 @@ TEST(Construction, NamesParseAndUnknownOnesListTheKnown) {
 }
 
 TEST(Construction, TheLatticeProfileIsAValidKeyProfileOfItsOwn) {
-  EXPECT_EQ(std::string(kLatticeProfile), "lattice-v1-w1");
+  EXPECT_EQ(std::string(kLatticeProfile), "lattice-v2-w1");
   EXPECT_EQ(ConstructionOfProfile(kLatticeProfile), Construction::kLattice);
   storage::SetKey key{1024, {1, 30, 30}, kLatticeProfile, 0};
   EXPECT_TRUE(storage::ValidateKey(key).ok());
