@@ -172,18 +172,27 @@ class SpectralEstimator : public DirectionEstimator {
     const int w = scene.width(), hgt = scene.height();
     std::vector<PixelDirection> out(scene.size());
     std::vector<std::vector<SampledPatch>> rows(static_cast<size_t>(side));
+    // Stacked, each pixel's crossings are found once, not once per block
+    // it is in (25 times at R = 2); samples == 0 where that failed.
+    std::vector<std::vector<PatchCrossings>> crossing_rows(static_cast<size_t>(side));
     // Every pixel's own pre-pass and its own fit.
-    auto sample_row = [&](int y, std::vector<SampledPatch>& row) {
+    auto sample_row = [&](int y, size_t k) {
+      std::vector<SampledPatch>& row = rows[k];
       row.assign(static_cast<size_t>(w), SampledPatch{});
+      if (shared) crossing_rows[k].assign(static_cast<size_t>(w), PatchCrossings{});
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
         const size_t i = static_cast<size_t>(y) * w + x;
         const uint64_t h = HashCombine(seed, i);
         row[x] = Sample(scene.Pixel(i), h);
         out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
+        if (shared) {
+          StatusOr<PatchCrossings> c = FindCrossings(row[x], lines_);
+          if (c.ok()) crossing_rows[k][x] = std::move(*c);
+        }
       });
     };
     for (int k = radius; k < side; ++k) {
-      if (k - radius < hgt) sample_row(k - radius, rows[static_cast<size_t>(k)]);
+      if (k - radius < hgt) sample_row(k - radius, static_cast<size_t>(k));
     }
     for (int y = 0; y < hgt; ++y) {
       // The pixel and its neighbours (core/analysis/edge_line_fit.h): on
@@ -196,10 +205,13 @@ class SpectralEstimator : public DirectionEstimator {
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
         const size_t i = static_cast<size_t>(y) * w + x;
         std::vector<const SampledPatch*> block(static_cast<size_t>(side * side), nullptr);
+        std::vector<const PatchCrossings*> crossings(block.size(), nullptr);
         for (int k = 0; k < side * side; ++k) {
-          const std::vector<SampledPatch>& row = rows[static_cast<size_t>(k / side)];
+          const size_t r = static_cast<size_t>(k / side);
           const int u = static_cast<int>(x) + k % side - radius;
-          if (!row.empty() && u >= 0 && u < w) block[static_cast<size_t>(k)] = &row[u];
+          if (rows[r].empty() || u < 0 || u >= w) continue;
+          block[static_cast<size_t>(k)] = &rows[r][u];
+          if (shared && crossing_rows[r][u].samples > 0) crossings[static_cast<size_t>(k)] = &crossing_rows[r][u];
         }
         // Footprints are pooled from the 3 x 3 only (side is 3 there).
         auto three_by_three = [&] {
@@ -207,7 +219,7 @@ class SpectralEstimator : public DirectionEstimator {
           std::copy(block.begin(), block.end(), nine.begin());
           return nine;
         };
-        const StatusOr<DirectionEstimate> e = shared ? EstimateEdgeLinesStacked(block, lines_)
+        const StatusOr<DirectionEstimate> e = shared ? EstimateEdgeLinesStacked(crossings, lines_)
                                                      : EstimateEdgeLinesPooled(three_by_three(), kMargin, lines_);
         if (!e.ok()) {
           refused_.fetch_add(1, std::memory_order_relaxed);
@@ -231,9 +243,13 @@ class SpectralEstimator : public DirectionEstimator {
         d.prepass_seed = out[i].prepass_seed;
         out[i] = d;
       });
-      for (int k = 0; k + 1 < side; ++k) rows[static_cast<size_t>(k)] = std::move(rows[static_cast<size_t>(k + 1)]);
+      for (size_t k = 0; k + 1 < static_cast<size_t>(side); ++k) {
+        rows[k] = std::move(rows[k + 1]);
+        crossing_rows[k] = std::move(crossing_rows[k + 1]);
+      }
       rows[static_cast<size_t>(side - 1)] = {};
-      if (y + radius + 1 < hgt) sample_row(y + radius + 1, rows[static_cast<size_t>(side - 1)]);
+      crossing_rows[static_cast<size_t>(side - 1)] = {};
+      if (y + radius + 1 < hgt) sample_row(y + radius + 1, static_cast<size_t>(side - 1));
     }
     return out;
   }

@@ -393,7 +393,17 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
   return EstimateEdgeLines(pooled, o);
 }
 
-StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const SampledPatch*>& pixels,
+StatusOr<PatchCrossings> FindCrossings(const SampledPatch& patch, const EdgeLineOptions& o) {
+  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
+  if (Status s = ValidateOptions(o); !s.ok()) return s;
+  PatchCrossings c;
+  c.samples = patch.points.size();
+  c.constant = !NonConstant(patch);
+  if (!c.constant) c.midpoints = Crossings(patch, o);
+  return c;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,
                                                      const EdgeLineOptions& o) {
   const size_t count = pixels.size();
   const size_t side = static_cast<size_t>(std::lround(std::sqrt(static_cast<double>(count))));
@@ -402,19 +412,17 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Sam
                                    std::to_string(count) + " pixels");
   }
   const int centre_index = static_cast<int>(count / 2);
-  const SampledPatch* centre = pixels[static_cast<size_t>(centre_index)];
-  if (!centre) return Status::InvalidArgument("stacked edge lines: no centre pixel");
+  const PatchCrossings* centre = pixels[static_cast<size_t>(centre_index)];
+  if (!centre || centre->samples == 0) return Status::InvalidArgument("stacked edge lines: no centre pixel");
   if (Status s = ValidateOptions(o); !s.ok()) return s;
-  for (const SampledPatch* p : pixels) {
-    if (!p) continue;
-    if (Status s = ValidateSampledPatch(*p); !s.ok()) return s;
-    if (p->points.size() != centre->points.size()) {
+  for (const PatchCrossings* p : pixels) {
+    if (p && p->samples != centre->samples) {
       return Status::InvalidArgument("stacked edge lines: every pixel needs as many samples as the centre");
     }
   }
   DirectionEstimate out;
   out.has_second = o.second;
-  if (!NonConstant(*centre)) {
+  if (centre->constant) {
     NoLines("constant patch", &out);
     return out;
   }
@@ -422,8 +430,8 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Sam
   s.patches = static_cast<int>(count);
   s.centre = centre_index;
   for (size_t k = 0; k < count; ++k) {
-    if (!pixels[k] || !NonConstant(*pixels[k])) continue;
-    for (const Point2& m : Crossings(*pixels[k], o)) {
+    if (!pixels[k] || pixels[k]->constant) continue;
+    for (const Point2& m : pixels[k]->midpoints) {
       s.m.push_back(m);
       s.of.push_back(static_cast<int>(k));
     }
@@ -435,12 +443,27 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Sam
     NoLines("no edge: " + std::to_string(own) + " neighbouring pairs jump in the pixel", &out);
     return out;
   }
-  const double band = o.band / std::sqrt(static_cast<double>(centre->points.size()));
-  const uint64_t seed = HashCombine(static_cast<uint64_t>(centre->points.size()), static_cast<uint64_t>(k));
+  const double band = o.band / std::sqrt(static_cast<double>(centre->samples));
+  const uint64_t seed = HashCombine(static_cast<uint64_t>(centre->samples), static_cast<uint64_t>(k));
   FindLines(k, o, seed, [&](const std::vector<size_t>& among, uint64_t sd) {
     return BestParallelLines(s, among, band, o, sd);
   }, &out);
   return out;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const SampledPatch*>& pixels,
+                                                     const EdgeLineOptions& o) {
+  const size_t count = pixels.size();
+  std::vector<PatchCrossings> found(count);
+  std::vector<const PatchCrossings*> block(count, nullptr);
+  for (size_t k = 0; k < count; ++k) {
+    if (!pixels[k]) continue;
+    StatusOr<PatchCrossings> c = FindCrossings(*pixels[k], o);
+    if (!c.ok()) return c.status();
+    found[k] = std::move(*c);
+    block[k] = &found[k];
+  }
+  return EstimateEdgeLinesStacked(block, o);
 }
 
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,

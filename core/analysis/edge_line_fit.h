@@ -102,4 +102,20 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const Samp
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const SampledPatch*>& pixels,
                                                      const EdgeLineOptions& options = {});
 
+// Steps 1-2 of one patch: its crossings. A stacked fit reads every pixel of
+// its block, so a renderer that fits every pixel of an image finds each
+// pixel's crossings once and hands them to the fit of each block the pixel
+// is in ((2R + 1)^2 of them) instead of finding them again in each.
+struct PatchCrossings {
+  std::vector<Point2> midpoints;  // empty for a constant patch
+  size_t samples = 0;             // the patch's M
+  bool constant = true;
+};
+// INVALID_ARGUMENT for an invalid patch or options.
+StatusOr<PatchCrossings> FindCrossings(const SampledPatch& patch, const EdgeLineOptions& options = {});
+// EstimateEdgeLinesStacked from the block's crossings, found with the same
+// options: the same estimate, to the last bit.
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,
+                                                     const EdgeLineOptions& options = {});
+
 }  // namespace alignset

@@ -362,6 +362,54 @@ TEST(EdgeLineFit, StacksAnyOddSquareBlockAndRefusesOthers) {
   EXPECT_TRUE(EstimateEdgeLinesStacked(one).ok());
 }
 
+// A renderer finds each pixel's crossings once and stacks them block by
+// block: the fit from crossings is the fit from the patches, and a constant
+// patch has none.
+TEST(EdgeLineFit, StackedFromCrossingsIsStackedFromPatches) {
+  EdgeLineOptions o;
+  o.second = true;
+  int found_lines = 0;
+  for (int c = 0; c < 12; ++c) {
+    std::vector<SampledPatch> block(25);
+    std::vector<const SampledPatch*> patches(25, nullptr);
+    std::vector<PatchCrossings> found(25);
+    std::vector<const PatchCrossings*> crossings(25, nullptr);
+    for (int k = 0; k < 25; ++k) {
+      if (c % 3 == 0 && k % 5 == 0) continue;  // the image's edge: no pixel there
+      const double dx = k % 5 - 2;
+      block[k] = OwenSobolPatch(Step(17.0 * c, 0.1 + 0.05 * dx), 64, HashCombine(c, 90 + k));
+      patches[k] = &block[k];
+      auto f = FindCrossings(block[k], o);
+      ASSERT_TRUE(f.ok());
+      found[k] = std::move(*f);
+      crossings[k] = &found[k];
+    }
+    auto a = EstimateEdgeLinesStacked(patches, o);
+    auto b = EstimateEdgeLinesStacked(crossings, o);
+    ASSERT_TRUE(a.ok() && b.ok());
+    EXPECT_EQ(a->first.status, b->first.status);
+    EXPECT_EQ(a->first.theta_deg, b->first.theta_deg);
+    EXPECT_EQ(a->first.confidence, b->first.confidence);
+    EXPECT_EQ(a->second.status, b->second.status);
+    EXPECT_EQ(a->second.theta_deg, b->second.theta_deg);
+    EXPECT_EQ(a->frequencies, b->frequencies);
+    found_lines += b->first.status == DirectionStatus::kFound;
+  }
+  EXPECT_GE(found_lines, 9);  // the comparison is not between two refusals
+  SampledPatch flat = OwenSobolPatch(Step(30.0, 0.0), 64, 1);
+  for (double& v : flat.values) v = 0.25;
+  auto none = FindCrossings(flat);
+  ASSERT_TRUE(none.ok());
+  EXPECT_TRUE(none->constant);
+  EXPECT_TRUE(none->midpoints.empty());
+  // Blocks of other sample counts are refused, as with patches.
+  auto other = FindCrossings(OwenSobolPatch(Step(30.0, 0.0), 128, 2));
+  ASSERT_TRUE(other.ok());
+  std::vector<const PatchCrossings*> mixed(9, &*none);
+  mixed[4] = &*other;
+  EXPECT_EQ(EstimateEdgeLinesStacked(mixed).status().code(), Status::Code::kInvalidArgument);
+}
+
 TEST(EdgeLineFit, IsDeterministic) {
   const SampledPatch s = OwenSobolPatch(Step(63.0, 0.05), 256, 9);
   auto a = EstimateEdgeLines(s), b = EstimateEdgeLines(s);
