@@ -152,33 +152,53 @@ struct Stack {
   int centre = 0;
 };
 
-// The inliers of the parallel lines with normal (nx, ny), one per patch,
-// each at the offset whose band of width 2 band holds most of that patch's
-// crossings in by_patch (a patch without the edge adds what lies in its
-// best band, a few strays at most).
-std::vector<size_t> ParallelInliers(const Stack& s, const std::vector<std::vector<size_t>>& by_patch,
-                                    double nx, double ny, double band) {
-  std::vector<size_t> in;
-  std::vector<std::pair<double, size_t>> p;
-  for (const std::vector<size_t>& crossings : by_patch) {
+// The parallel lines with normal (nx, ny), one per patch, each at the
+// offset whose band of width 2 band holds most of that patch's crossings in
+// by_patch (a patch without the edge adds what lies in its best band, a few
+// strays at most): each patch's best band as [first, first + count) of its
+// crossings sorted by offset (ties by index), in `sorted`.
+struct ParallelBands {
+  std::vector<std::pair<double, size_t>> sorted;  // every patch's crossings, patch after patch
+  std::vector<size_t> begin, first, count;        // per patch
+  size_t total = 0, centre = 0;                   // inliers in all, in the centre patch
+};
+
+void FindParallelBands(const Stack& s, const std::vector<std::vector<size_t>>& by_patch, double nx,
+                       double ny, double band, ParallelBands* b) {
+  b->sorted.clear();
+  b->begin.assign(by_patch.size(), 0);
+  b->first.assign(by_patch.size(), 0);
+  b->count.assign(by_patch.size(), 0);
+  b->total = b->centre = 0;
+  for (size_t k = 0; k < by_patch.size(); ++k) {
+    const std::vector<size_t>& crossings = by_patch[k];
+    const size_t at = b->sorted.size();
+    b->begin[k] = at;
     if (crossings.empty()) continue;
-    p.clear();
-    for (size_t i : crossings) p.push_back({s.m[i].x * nx + s.m[i].y * ny, i});
-    std::sort(p.begin(), p.end());
+    for (size_t i : crossings) b->sorted.push_back({s.m[i].x * nx + s.m[i].y * ny, i});
+    const auto p = b->sorted.begin() + static_cast<std::ptrdiff_t>(at);
+    std::sort(p, b->sorted.end());
+    const size_t n = crossings.size();
     size_t best_lo = 0, best_count = 0;
-    for (size_t lo = 0, hi = 0; lo < p.size(); ++lo) {
-      while (hi < p.size() && p[hi].first - p[lo].first <= 2.0 * band) ++hi;
+    for (size_t lo = 0, hi = 0; lo < n; ++lo) {
+      while (hi < n && p[hi].first - p[lo].first <= 2.0 * band) ++hi;
       if (hi - lo > best_count) best_count = hi - lo, best_lo = lo;
     }
-    for (size_t j = best_lo; j < best_lo + best_count; ++j) in.push_back(p[j].second);
+    b->first[k] = best_lo;
+    b->count[k] = best_count;
+    b->total += best_count;
+    if (static_cast<int>(k) == s.centre) b->centre = best_count;
   }
-  return in;
 }
 
-size_t CountIn(const Stack& s, const std::vector<size_t>& idx, int patch) {
-  size_t c = 0;
-  for (size_t i : idx) c += s.of[i] == patch;
-  return c;
+// The inliers of FindParallelBands's lines, patch after patch.
+std::vector<size_t> BandInliers(const ParallelBands& b) {
+  std::vector<size_t> in;
+  in.reserve(b.total);
+  for (size_t k = 0; k < b.begin.size(); ++k) {
+    for (size_t j = 0; j < b.count[k]; ++j) in.push_back(b.sorted[b.begin[k] + b.first[k] + j].second);
+  }
+  return in;
 }
 
 // Total least squares on parallel lines: each patch's inliers about their
@@ -208,6 +228,9 @@ Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double
   std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
   for (size_t i : among) by_patch[s.of[i]].push_back(i);
   if (by_patch[s.centre].size() < 2) return best;
+  // Candidates are scored by their counts; only a new best builds its
+  // inlier list.
+  ParallelBands bands;
   for (double baseline : {1.0 / 3.0, 4.0 * band}) {
     Pcg32 rng(seed);
     int tried = 0;
@@ -218,19 +241,21 @@ Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double
       const double dx = s.m[b].x - s.m[a].x, dy = s.m[b].y - s.m[a].y, len = std::hypot(dx, dy);
       if (len < baseline) continue;
       ++tried;
-      std::vector<size_t> in = ParallelInliers(s, by_patch, -dy / len, dx / len, band);
-      if (CountIn(s, in, s.centre) < 2) continue;
-      if (in.size() > best.inliers.size()) best = {true, Line{0.0, 0.0, -dy / len, dx / len}, std::move(in)};
+      FindParallelBands(s, by_patch, -dy / len, dx / len, band, &bands);
+      if (bands.centre < 2) continue;
+      if (bands.total > best.inliers.size()) {
+        best = {true, Line{0.0, 0.0, -dy / len, dx / len}, BandInliers(bands)};
+      }
     }
     if (best.ok) break;
   }
   if (!best.ok) return best;
   for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
     const Line l = FitParallel(s, best.inliers);
-    std::vector<size_t> in = ParallelInliers(s, by_patch, l.nx, l.ny, band);
-    if (CountIn(s, in, s.centre) < 2) break;
+    FindParallelBands(s, by_patch, l.nx, l.ny, band, &bands);
+    if (bands.centre < 2) break;
     best.line = l;
-    best.inliers = std::move(in);
+    best.inliers = BandInliers(bands);
   }
   return best;
 }
