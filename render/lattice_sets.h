@@ -17,8 +17,8 @@ namespace alignset::render {
 // every served degree and pair the direction maps choose under `policy`, the
 // lattice whose generator core/optimize/aligned_lattice.h chooses for that
 // direction (window `window_deg`). Built locally, no server: a generator
-// takes milliseconds (13 ms at N = 1024, 80 ms at 4096), and the same key always gives the same
-// lattice. The table has the shape of the fetched optimized sets, so the
+// takes milliseconds (13 ms at N = 1024, 80 ms at 4096), and the same key
+// always gives the same lattice. The table has the shape of the fetched optimized sets, so the
 // aligned sampler reads either.
 struct LatticeTableStats {
   size_t one = 0, two = 0;

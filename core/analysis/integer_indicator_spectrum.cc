@@ -20,8 +20,8 @@ constexpr double kSmallArgument = 0.05;
 // 1 / (k + 1)!, k = 0 ... 12.
 constexpr int kSeriesTerms = 13;
 constexpr double kSeries[kSeriesTerms] = {
-    1.0,           1.0 / 2,        1.0 / 6,         1.0 / 24,         1.0 / 120,
-    1.0 / 720,     1.0 / 5040,     1.0 / 40320,     1.0 / 362880,     1.0 / 3628800,
+    1.0,          1.0 / 2,       1.0 / 6,        1.0 / 24,        1.0 / 120,
+    1.0 / 720,    1.0 / 5040,    1.0 / 40320,    1.0 / 362880,    1.0 / 3628800,
     1.0 / 39916800, 1.0 / 479001600, 1.0 / 6227020800.0};
 
 bool OnSide(double t) { return std::abs(t) <= kOnSide || std::abs(t - 1.0) <= kOnSide; }
