@@ -116,7 +116,7 @@ namespace {
 constexpr double kPrepassSecondLineShare = 0.15;
 
 // The stacked fit draws 24 candidate directions instead of the fit's 96: a
-// block of 25 pixels gives each candidate ample support, and the
+// block of 9 or 25 pixels gives each candidate ample support, and the
 // refinement places the winner. Aligned lattices' edge MSE on shadow against
 // 96 (seeds 1-6 at 256 + 64, 1-3 at 1024 + 256 and 4096 + 256): -0.6%
 // (0.984-1.003 per seed), +0.5% (1.004-1.007), +0.3% (0.988-1.017); 48 gave
