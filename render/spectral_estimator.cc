@@ -217,23 +217,22 @@ class SpectralEstimator : public DirectionEstimator {
       // own 64 samples put them: a median 2.2 degrees off).
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
         const size_t i = static_cast<size_t>(y) * w + x;
-        std::vector<const SampledPatch*> block(static_cast<size_t>(side * side), nullptr);
-        std::vector<const PatchCrossings*> crossings(block.size(), nullptr);
+        // Stacked, the block's crossings; on footprints (side is 3 there),
+        // the 3 x 3 patches.
+        std::vector<const PatchCrossings*> crossings(shared ? static_cast<size_t>(side * side) : 0, nullptr);
+        std::array<const SampledPatch*, 9> nine{};
         for (int k = 0; k < side * side; ++k) {
           const size_t r = static_cast<size_t>(k / side);
           const int u = static_cast<int>(x) + k % side - radius;
           if (rows[r].empty() || u < 0 || u >= w) continue;
-          block[static_cast<size_t>(k)] = &rows[r][u];
-          if (shared && crossing_rows[r][u].samples > 0) crossings[static_cast<size_t>(k)] = &crossing_rows[r][u];
+          if (!shared) {
+            nine[static_cast<size_t>(k)] = &rows[r][u];
+          } else if (crossing_rows[r][u].samples > 0) {
+            crossings[static_cast<size_t>(k)] = &crossing_rows[r][u];
+          }
         }
-        // Footprints are pooled from the 3 x 3 only (side is 3 there).
-        auto three_by_three = [&] {
-          std::array<const SampledPatch*, 9> nine{};
-          std::copy(block.begin(), block.end(), nine.begin());
-          return nine;
-        };
         const StatusOr<DirectionEstimate> e = shared ? EstimateEdgeLinesStacked(crossings, stacked_)
-                                                     : EstimateEdgeLinesPooled(three_by_three(), kMargin, lines_);
+                                                     : EstimateEdgeLinesPooled(nine, kMargin, lines_);
         if (!e.ok()) {
           refused_.fetch_add(1, std::memory_order_relaxed);
           return;

@@ -113,10 +113,11 @@ inline constexpr const char* kDefaultPrepass = "nedges256";
 // `alignset render`'s default, "auto": the pooled edge-line fit on a
 // quarter of the sampler's N, at least 16 and at most 256 samples (nedges64
 // at N = 256, nedges256 from N = 1024 on), stacked over 5 x 5 pixels (s2)
-// up to N = 1024 and over 3 x 3 above (kDefaultStackRadius's measurements). The quarter was measured with
-// the pixel's own samples on the three scene seeds with aligned lattices:
-// at N = 256, edges64 is 1.7-2.1x below Owen-Sobol at the same total (320)
-// where edges256 is 1.2-1.4x (at 512), and a sweep of 32, 64 and 128
+// up to N = 1024 and over 3 x 3 above (kDefaultStackRadius's
+// measurements). The quarter was measured with the pixel's own samples on
+// the three scene seeds with aligned lattices: at N = 256, edges64 is
+// 1.7-2.1x below Owen-Sobol at the same total (320) where edges256 is
+// 1.2-1.4x (at 512), and a sweep of 32, 64 and 128
 // samples and of the lattice's window kept 64
 // (bench/results/render_prepass_sweep256.md); at 1024 edges256 is ahead.
 // With pooling, nedges64 at 256 is 2.5x (antialias) and 2.1x (shadow)
