@@ -1,6 +1,7 @@
 #include "server/validation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/optimize/optimizer.h"
@@ -60,8 +61,10 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
     }
     // Beyond this, doubles no longer resolve whole degrees.
     if (std::fabs(directions_deg[i]) > 1e15) {
-      return Status::InvalidArgument("direction " + std::to_string(i) + " = " +
-                                     std::to_string(directions_deg[i]) + " is too large");
+      char text[64];
+      std::snprintf(text, sizeof text, "%g", directions_deg[i]);
+      return Status::InvalidArgument("direction " + std::to_string(i) + " = " + text +
+                                     " degrees is too large (at most 1e15 in magnitude)");
     }
   }
   return Canonicalize(directions_deg, grid);

@@ -28,7 +28,7 @@ TEST(Validation, RefusesEachBadFieldWithAMessageNamingIt) {
   ExpectInvalid(64, {1, 2, 3}, "got 3");
   ExpectInvalid(64, {std::nan("")}, "not a finite");
   ExpectInvalid(64, {10, std::numeric_limits<double>::infinity()}, "direction 1");
-  ExpectInvalid(64, {1e300}, "too large");
+  ExpectInvalid(64, {1e300}, "= 1e+300 degrees is too large");
 }
 
 TEST(Validation, AcceptsAndCanonicalizes) {
