@@ -11,9 +11,11 @@
 #   SEEDS="4 5" N=1024 bash bench/render/seeds.sh    # others
 #   PREPASS=edges64 N=256 SAMPLERS=owen-sobol,aligned-lattice,aligned-lattice+reuse bash bench/render/seeds.sh
 #
-# Two-direction sets up to TWO_MAX_N (default 1024; the optimized sets at
-# 4096 take about 40 minutes per seed); the policy is the same for every
-# aligned sampler, lattices included.
+# Two-direction sets up to TWO_MAX_N: by default 1024 when the optimized
+# sets are among the samplers (`aligned*`: filling their pairs at 4096 takes
+# about 40 minutes per seed), and every N when only lattices are aligned
+# (chosen locally in seconds), as `alignset render` does; the policy is the
+# same for every aligned sampler, lattices included.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 BUILD_DIR="${BUILD_DIR:-build}"
@@ -23,7 +25,11 @@ SAMPLERS="${SAMPLERS:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1,aligne
 COUNTED="${COUNTED:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1}"
 RAW="${RAW:-$BUILD_DIR/render-seeds}"
 OUT="${OUT:-bench/results/render_seeds.md}"
-TWO_MAX_N="${TWO_MAX_N:-1024}"
+optimized_sets=0
+for s in ${SAMPLERS//,/ }; do
+  [[ $s == aligned* && $s != aligned-lattice* ]] && optimized_sets=1
+done
+if (( optimized_sets )); then TWO_MAX_N="${TWO_MAX_N:-1024}"; else TWO_MAX_N="${TWO_MAX_N:-65536}"; fi
 THREADS="${THREADS:-2}"
 # The direction estimator's pre-pass (render/spectral_estimator.h); what it
 # costs a pixel is read from the estimator.csv render_bench writes.
