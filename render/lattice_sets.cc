@@ -1,6 +1,7 @@
 #include "render/lattice_sets.h"
 
 #include <chrono>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -22,6 +23,11 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   if (!(window_deg >= 0.0 && window_deg <= 10.0)) {
     return Status::InvalidArgument("the lattice window must be in [0, 10] degrees");
   }
+  // Every served degree and pair is the image of a canonical key under a
+  // symmetry of the square (core/align/canonical.h), and the lattice chosen
+  // for the key maps onto one the search would score as well for the
+  // image (MapLatticeGenerator): so one search per key, at most 46
+  // one-direction keys for the 180 degrees.
   std::set<int> ones;
   std::set<std::pair<int, int>> twos;
   for (const auto* map : direction_maps) {
@@ -31,35 +37,57 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
       if (c.kind == SetChoice::Kind::kTwo) twos.insert({std::min(c.a, c.b), std::max(c.a, c.b)});
     }
   }
+  struct Served {
+    Canonicalization how;
+    int one = -1;                    // the served degree, or
+    std::pair<int, int> two{-1, -1};  // the served pair
+  };
+  std::vector<Served> served;
+  std::map<std::pair<int, int>, uint32_t> by_key;  // (phi1, phi2) -> generator (0: not chosen yet)
+  auto add = [&](std::vector<double> dirs, int one, std::pair<int, int> two) -> Status {
+    auto how = Canonicalize(dirs);
+    if (!how.ok()) return how.status();
+    by_key[{how->key.phi1, how->key.phi2}] = 0;
+    served.push_back({std::move(*how), one, two});
+    return Status::Ok();
+  };
+  for (int a : ones) {
+    if (Status s = add({static_cast<double>(a)}, a, {-1, -1}); !s.ok()) return s;
+  }
+  for (const auto& [a, b] : twos) {
+    if (Status s = add({static_cast<double>(a), static_cast<double>(b)}, -1, {a, b}); !s.ok()) return s;
+  }
   AlignedLatticeOptions o;
   o.window_deg = window_deg;
   o.threads = threads;
   AlignedSetTable table;
   table.n = n;
   table.one.resize(180);
-  const double total = static_cast<double>(ones.size() + twos.size());
+  const double total = static_cast<double>(by_key.size());
   double done = 0.0;
-  auto make = [&](const std::vector<double>& dirs) -> StatusOr<PointSet> {
+  for (auto& [key, generator] : by_key) {
+    std::vector<double> dirs = {static_cast<double>(key.first)};
+    if (key.second != key.first) dirs.push_back(static_cast<double>(key.second));
     auto choice = ChooseAlignedLatticeGenerator(n, dirs, o);
     if (!choice.ok()) return choice.status();
+    generator = choice->generator;
     if (progress) progress(++done, total);
+  }
+  for (const Served& s : served) {
+    const uint32_t g = MapLatticeGenerator(n, by_key.at({s.how.key.phi1, s.how.key.phi2}), s.how.ops);
     // One realization for every pixel: the per-pixel Cranley-Patterson
     // shift is what decorrelates pixels (and keeps each unbiased).
-    return Rank1LatticePoints(n, choice->generator, 0);
-  };
-  for (int a : ones) {
-    auto set = make({static_cast<double>(a)});
-    if (!set.ok()) return set.status();
-    table.one[a] = std::move(*set);
-  }
-  for (const auto& [a, b] : twos) {
-    auto set = make({static_cast<double>(a), static_cast<double>(b)});
-    if (!set.ok()) return set.status();
-    table.two[{a, b}] = std::move(*set);
+    PointSet points = Rank1LatticePoints(n, g, 0);
+    if (s.one >= 0) {
+      table.one[s.one] = std::move(points);
+    } else {
+      table.two[s.two] = std::move(points);
+    }
   }
   if (stats) {
     stats->one = ones.size();
     stats->two = twos.size();
+    stats->searched = by_key.size();
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   return table;

@@ -94,8 +94,9 @@ StatusOr<RenderSummary> RunRender(
     table = std::move(*built);
     c.sets = &table;
     char line[160];
-    std::snprintf(line, sizeof line, "%zu one-direction and %zu two-direction lattices chosen in %.2f s",
-                  st.one, st.two, st.seconds);
+    std::snprintf(line, sizeof line,
+                  "%zu one-direction and %zu two-direction lattices (%zu searches, one per canonical key) in %.2f s",
+                  st.one, st.two, st.searched, st.seconds);
     summary.note = line;
   }
   if (r.sampler == "screen-space-rank1") {

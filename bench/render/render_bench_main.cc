@@ -514,8 +514,8 @@ int Main(int argc, char** argv) {
           return 1;
         }
         lattices = std::move(*built);
-        std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction lattices in %.1f s\n", n,
-                     st.one, st.two, st.seconds);
+        std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction lattices (%zu searches) in %.1f s\n",
+                     n, st.one, st.two, st.searched, st.seconds);
       }
     }
     ShiftTile tile;

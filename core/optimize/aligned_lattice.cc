@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <iterator>
+#include <tuple>
 #include <thread>
 #include <cmath>
 #include <complex>
@@ -141,13 +142,58 @@ Status Validate(uint32_t n, const std::vector<double>& directions, const Aligned
 
 }  // namespace
 
+namespace {
+
+// The two stages' radii: all dual points within N / 2 in the final one,
+// within 8 sqrt(N) (at least 32) in the first.
+int FullRadius(uint32_t n) { return static_cast<int>(n / 2); }
+int FirstRadius(uint32_t n) {
+  return std::min(FullRadius(n), std::max(32, static_cast<int>(std::lround(8.0 * std::sqrt(n)))));
+}
+
+// Modular inverse of g (coprime to n), by the extended Euclidean algorithm.
+uint32_t InverseMod(uint32_t g, uint32_t n) {
+  int64_t r0 = n, r1 = g % n, t0 = 0, t1 = 1;
+  while (r1 != 0) {
+    const int64_t q = r0 / r1;
+    std::tie(r0, r1) = std::make_pair(r1, r0 - q * r1);
+    std::tie(t0, t1) = std::make_pair(t1, t0 - q * t1);
+  }
+  return static_cast<uint32_t>(((t0 % n) + n) % n);
+}
+
+}  // namespace
+
+StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
+                                     const AlignedLatticeOptions& options) {
+  if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
+  if (g == 0 || g >= n || std::gcd(g, n) != 1) {
+    return Status::InvalidArgument("aligned lattice: g = " + std::to_string(g) + " is not a generator coprime to N = " +
+                                   std::to_string(n));
+  }
+  const int r_full = FullRadius(n), r_first = FirstRadius(n);
+  if (r_full > r_first) {
+    const Family family = ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
+                                       std::size(kEdgeOffsets), r_full);
+    return Quantized(Score(n, g, r_full, family));
+  }
+  return Quantized(Score(n, g, r_first, ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first)));
+}
+
+uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops) {
+  uint32_t m = ops.swap ? InverseMod(g, n) : g % n;
+  if (ops.invert) m = (n - m) % n;
+  if (ops.invert_y) m = (n - m) % n;
+  return m;
+}
+
 StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
     uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options) {
   if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
   // The first stage sees a coarse family (the window's ends and middle, two
   // offsets): it only has to keep the finalists, and it scores every g.
-  const int r_full = static_cast<int>(n / 2);
-  const int r_first = std::min(r_full, std::max(32, static_cast<int>(std::lround(8.0 * std::sqrt(n)))));
+  const int r_full = FullRadius(n);
+  const int r_first = FirstRadius(n);
   const Family coarse = ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
   const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/align/canonical.h"
 #include "core/util/point_set.h"
 #include "core/util/status.h"
 
@@ -47,6 +48,22 @@ struct AlignedLatticeChoice {
 // direction that is not finite, or a window outside [0, 10] degrees.
 StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
     uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options = {});
+
+// The score ChooseAlignedLatticeGenerator's final stage gives generator g
+// for these directions (lower is better; the chosen generator's is the
+// least). INVALID_ARGUMENT as there, or for g not coprime to N.
+StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
+                                     const AlignedLatticeOptions& options = {});
+
+// The generator of the lattice that `ops` carries the lattice of generator g
+// onto, as a set of points up to a shift: swapping x and y takes g to its
+// inverse mod N, each inversion to N - g. The directions map as ops maps
+// them (core/align/canonical.h), and so does the scored family of edges, so
+// the image of the lattice chosen for a canonical key scores for the mapped
+// directions what the choice scored for the key: a renderer chooses once
+// per orbit (46 one-direction keys instead of 180 degrees). g must be
+// coprime to N.
+uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops);
 
 // The lattice with generator g and realization `seed`: the shift is a whole
 // number of columns and rows drawn from the seed plus half a cell, so every

@@ -120,6 +120,47 @@ TEST(AlignedLattice, MirrorTiesGoToTheSmallerGenerator) {
   }
 }
 
+// The symmetries of the square carry a canonical key's lattice onto the
+// request's: the mapped generator's lattice is the aligned point set (up to
+// a shift), and it scores for the request what the search's own choice for
+// the request scores, so choosing once per key loses nothing.
+TEST(AlignedLattice, CanonicalChoiceMapsOntoEveryDirection) {
+  const std::vector<std::vector<double>> requests = {{100}, {150}, {60}, {135}, {91}, {179},
+                                                     {20, 130}, {100, 170}, {50, 80}};
+  for (uint32_t n : {256u, 1024u}) {
+    for (const auto& dirs : requests) {
+      auto how = Canonicalize(dirs);
+      ASSERT_TRUE(how.ok());
+      std::vector<double> key = {Phi1Degrees(how->key)};
+      if (dirs.size() == 2) key.push_back(Phi2Degrees(how->key));
+      auto canonical = ChooseAlignedLatticeGenerator(n, key);
+      auto direct = ChooseAlignedLatticeGenerator(n, dirs);
+      ASSERT_TRUE(canonical.ok() && direct.ok());
+      const uint32_t g = MapLatticeGenerator(n, canonical->generator, how->ops);
+      auto mapped = AlignedLatticeScore(n, g, dirs);
+      ASSERT_TRUE(mapped.ok()) << mapped.status().message();
+      EXPECT_NEAR(*mapped, direct->score, 1e-8) << "N = " << n << ", " << dirs[0] << " deg: g " << g
+                                                << " against the direct choice " << direct->generator;
+      EXPECT_NEAR(*mapped, canonical->score, 1e-8);
+      // The aligned lattice is a shifted copy of the mapped generator's:
+      // every difference of two points is a multiple of (1, g) / N.
+      const PointSet aligned = Align(Rank1LatticePoints(n, canonical->generator, 0), how->ops);
+      for (const Point2& p : aligned) {
+        const int64_t dx = std::llround((p.x - aligned[0].x) * n), dy = std::llround((p.y - aligned[0].y) * n);
+        const int64_t want = ((dx % n + n) % n) * g % n;
+        ASSERT_EQ(((dy % n) + n) % n, want) << "N = " << n << ", " << dirs[0] << " deg";
+      }
+    }
+  }
+  // g -> N - g and g -> g^-1 are involutions, and map generators to generators.
+  for (uint32_t g : {1u, 3u, 77u, 1023u}) {
+    EXPECT_EQ(MapLatticeGenerator(1024, MapLatticeGenerator(1024, g, {true, false, false}), {true, false, false}), g);
+    EXPECT_EQ(MapLatticeGenerator(1024, g, {false, true, false}), 1024 - g);
+    EXPECT_EQ(MapLatticeGenerator(1024, g, {true, false, false}) * uint64_t{g} % 1024, 1u);
+  }
+  EXPECT_EQ(AlignedLatticeScore(1024, 2, {30}).status().code(), Status::Code::kInvalidArgument);
+}
+
 TEST(AlignedLattice, RefusesBadInput) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(AlignedLattice(15, {30.0}, 1).status().code(), Status::Code::kInvalidArgument);
