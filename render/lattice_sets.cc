@@ -63,16 +63,18 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   AlignedSetTable table;
   table.n = n;
   table.one.resize(180);
-  const double total = static_cast<double>(by_key.size());
-  double done = 0.0;
-  for (auto& [key, generator] : by_key) {
-    std::vector<double> dirs = {static_cast<double>(key.first)};
-    if (key.second != key.first) dirs.push_back(static_cast<double>(key.second));
-    auto choice = ChooseAlignedLatticeGenerator(n, dirs, o);
-    if (!choice.ok()) return choice.status();
-    generator = choice->generator;
-    if (progress) progress(++done, total);
+  // All keys in one call: the first stage's work per degree is shared by
+  // every pair the degree is in.
+  std::vector<std::vector<double>> keys;
+  for (const auto& entry : by_key) {
+    const std::pair<int, int>& key = entry.first;
+    keys.push_back({static_cast<double>(key.first)});
+    if (key.second != key.first) keys.back().push_back(static_cast<double>(key.second));
   }
+  auto choices = ChooseAlignedLatticeGenerators(n, keys, o, progress);
+  if (!choices.ok()) return choices.status();
+  size_t k = 0;
+  for (auto& entry : by_key) entry.second = (*choices)[k++].generator;
   for (const Served& s : served) {
     const uint32_t g = MapLatticeGenerator(n, by_key.at({s.how.key.phi1, s.how.key.phi2}), s.how.ops);
     // One realization for every pixel: the per-pixel Cranley-Patterson

@@ -18,9 +18,11 @@ namespace alignset::render {
 // lattice whose generator core/optimize/aligned_lattice.h chooses for that
 // direction (window `window_deg`). Built locally, no server: a generator
 // takes milliseconds (13 ms at N = 1024, 80 ms at 4096), chosen once per
-// canonical key (core/align/canonical.h) and mapped onto the degree or pair
-// by the square's symmetries (MapLatticeGenerator), as the service serves
-// its lattices; the same key always gives the same lattice. The table has the shape of the fetched optimized sets, so the
+// canonical key (core/align/canonical.h), all keys in one batch that
+// shares each degree's work between the pairs it is in, and mapped onto
+// the degree or pair by the square's symmetries (MapLatticeGenerator), as
+// the service serves its lattices; the same key always gives the same
+// lattice. The table has the shape of the fetched optimized sets, so the
 // aligned sampler reads either.
 struct LatticeTableStats {
   size_t one = 0, two = 0;  // served degrees and pairs in the table

@@ -7,6 +7,7 @@
 #include <thread>
 #include <cmath>
 #include <complex>
+#include <functional>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -36,6 +37,7 @@ constexpr double kMaxTableBytes = 64e6;
 
 struct Family {
   std::vector<IntegerIndicatorSpectrum> edges;
+  std::vector<size_t> ends;  // direction i's edges are [ends[i - 1], ends[i])
 };
 
 // The edges scored: for each direction, 2 steps + 1 normals across the
@@ -59,14 +61,22 @@ Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg
         if (SignedArea(p) > 1e-12) f.edges.emplace_back(p, radius, tabulate);
       }
     }
+    f.ends.push_back(f.edges.size());
   }
   return f;
 }
 
-// The score of one generator: the mean log variance of the family's edges
-// plus kCornerWeight times the log variance of the corner term, over the
-// dual points within `radius`.
-double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
+// The terms of one generator's score over the dual points within `radius`:
+// per direction of the family, the sum of its edges' log variances, and
+// kCornerWeight times the log variance of the corner term. A key's score is
+// the mean log variance of its edges plus the corner term (Combine); kept
+// per direction, the first stage's terms serve every key a direction is in.
+struct Terms {
+  std::vector<double> directions;
+  double corner = 0.0;
+};
+
+Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
   const std::vector<Frequency> dual = Rank1DualHalfDisk(n, g, radius);
   std::vector<double> edge_sum(family.edges.size(), 0.0);
   double corner = 0.0;
@@ -84,10 +94,15 @@ double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
   // edge through the centre at 45 degrees: its dual misses that edge's
   // coefficients, while the set is a line) from outweighing all others.
   const double floor = 0.1 / (static_cast<double>(n) * n);
-  double score = 0.0;
-  for (double s : edge_sum) score += std::log(2.0 * s + floor);
-  score /= static_cast<double>(std::max<size_t>(1, edge_sum.size()));
-  return score + kCornerWeight * std::log(2.0 * corner + floor);
+  Terms t;
+  size_t k = 0;
+  for (size_t end : family.ends) {
+    double sum = 0.0;
+    for (; k < end; ++k) sum += std::log(2.0 * edge_sum[k] + floor);
+    t.directions.push_back(sum);
+  }
+  t.corner = kCornerWeight * std::log(2.0 * corner + floor);
+  return t;
 }
 
 // A score rounded to 2^-30 (about 1e-9; scores are logs near -10...-40):
@@ -97,25 +112,29 @@ double Score(uint32_t n, uint32_t g, int radius, const Family& family) {
 // and the smaller g wins, as the header promises.
 double Quantized(double score) { return std::ldexp(std::nearbyint(std::ldexp(score, 30)), -30); }
 
-// Scores every (score, g) entry in place, on `threads` threads (0: all
-// cores); each score depends on its g alone, so the result does not depend
-// on the thread count.
-void ScoreAll(uint32_t n, int radius, const Family& family, int threads,
-              std::vector<std::pair<double, uint32_t>>* ranked) {
-  const size_t count = ranked->size();
+// fn(i) for i in [0, count) on `threads` threads (0: all cores); each
+// result depends on its i alone, so nothing depends on the thread count.
+template <class Fn>
+void ParallelOver(size_t count, int threads, const Fn& fn) {
   size_t workers = threads > 0 ? static_cast<size_t>(threads)
                                : std::max(1u, std::thread::hardware_concurrency());
   workers = std::min(workers, std::max<size_t>(1, count / 16));
   std::atomic<size_t> next{0};
   auto work = [&] {
-    for (size_t i = next++; i < count; i = next++) {
-      (*ranked)[i].first = Quantized(Score(n, (*ranked)[i].second, radius, family));
-    }
+    for (size_t i = next++; i < count; i = next++) fn(i);
   };
   std::vector<std::thread> pool;
   for (size_t t = 1; t < workers; ++t) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
+}
+
+// A key's score from its directions' terms (in the key's order) and the
+// count of its edges.
+double Combine(const std::vector<double>& direction_sums, size_t edges, double corner) {
+  double sum = 0.0;
+  for (double x : direction_sums) sum += x;
+  return Quantized(sum / static_cast<double>(std::max<size_t>(1, edges)) + corner);
 }
 
 Status Validate(uint32_t n, const std::vector<double>& directions, const AlignedLatticeOptions& o) {
@@ -172,12 +191,11 @@ StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<d
                                    std::to_string(n));
   }
   const int r_full = FullRadius(n), r_first = FirstRadius(n);
-  if (r_full > r_first) {
-    const Family family = ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
-                                       std::size(kEdgeOffsets), r_full);
-    return Quantized(Score(n, g, r_full, family));
-  }
-  return Quantized(Score(n, g, r_first, ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first)));
+  const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
+                                                        std::size(kEdgeOffsets), r_full)
+                                         : ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
+  const Terms t = ScoreTerms(n, g, std::max(r_full, r_first), family);
+  return Combine(t.directions, family.edges.size(), t.corner);
 }
 
 uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops) {
@@ -187,35 +205,127 @@ uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops) {
   return m;
 }
 
-StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
-    uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options) {
-  if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
-  // The first stage sees a coarse family (the window's ends and middle, two
-  // offsets): it only has to keep the finalists, and it scores every g.
+StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
+    uint32_t n, const std::vector<std::vector<double>>& keys, const AlignedLatticeOptions& options,
+    const std::function<void(double done, double total)>& progress) {
+  for (const std::vector<double>& key : keys) {
+    if (Status s = Validate(n, key, options); !s.ok()) return s;
+  }
   const int r_full = FullRadius(n);
   const int r_first = FirstRadius(n);
-  const Family coarse = ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
   const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
-
-  std::vector<std::pair<double, uint32_t>> ranked;
+  std::vector<uint32_t> candidates;
   for (uint32_t g = 1; g < n; g += stride) {
-    if (std::gcd(g, n) == 1) ranked.push_back({0.0, g});
+    if (std::gcd(g, n) == 1) candidates.push_back(g);
   }
-  ScoreAll(n, r_first, coarse, options.threads, &ranked);
-  AlignedLatticeChoice choice;
-  choice.candidates = static_cast<uint32_t>(ranked.size());
-  const size_t keep = std::min(ranked.size(), static_cast<size_t>(options.finalists));
-  std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end());
-  ranked.resize(keep);
+  // The first stage sees a coarse family (the window's ends and middle, two
+  // offsets): it only has to keep the finalists, and it scores every g. Its
+  // terms are kept per direction, each computed once however many keys
+  // share it (a render's pairs share their degrees).
+  std::vector<double> directions;
+  for (const std::vector<double>& key : keys) directions.insert(directions.end(), key.begin(), key.end());
+  std::sort(directions.begin(), directions.end());
+  directions.erase(std::unique(directions.begin(), directions.end()), directions.end());
+  const double total = static_cast<double>(FullRadius(n) > FirstRadius(n) ? 2 * directions.size()
+                                                                            : directions.size());
+  double done = 0.0;
+  std::vector<std::vector<double>> coarse(directions.size());
+  std::vector<size_t> coarse_edges(directions.size());
+  std::vector<double> corner(candidates.size());
+  for (size_t i = 0; i < directions.size(); ++i) {
+    const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, 2, r_first);
+    coarse_edges[i] = f.edges.size();
+    coarse[i].resize(candidates.size());
+    ParallelOver(candidates.size(), options.threads, [&](size_t j) {
+      const Terms t = ScoreTerms(n, candidates[j], r_first, f);
+      coarse[i][j] = t.directions.front();
+      if (i == 0) corner[j] = t.corner;  // the same in every direction's pass
+    });
+    if (progress) progress(++done, total);
+  }
+  auto index_of = [&](double d) {
+    return static_cast<size_t>(std::lower_bound(directions.begin(), directions.end(), d) - directions.begin());
+  };
+  // Each key's finalists by the first stage.
+  std::vector<std::vector<std::pair<double, uint32_t>>> finalists(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const std::vector<double>& key = keys[k];
+    std::vector<std::pair<double, uint32_t>>& ranked = finalists[k];
+    ranked.resize(candidates.size());
+    size_t edges = 0;
+    for (double d : key) edges += coarse_edges[index_of(d)];
+    std::vector<double> sums(key.size());
+    for (size_t j = 0; j < candidates.size(); ++j) {
+      for (size_t i = 0; i < key.size(); ++i) sums[i] = coarse[index_of(key[i])][j];
+      ranked[j] = {Combine(sums, edges, corner[j]), candidates[j]};
+    }
+    const size_t keep = std::min(ranked.size(), static_cast<size_t>(options.finalists));
+    std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end());
+    ranked.resize(keep);
+  }
+  // The final stage on the whole family, its terms also per direction: each
+  // (direction, g) a key's finalists need is scored once, one direction's
+  // family at a time (at N = 4096 a direction's tables take 3.5 MB).
   if (r_full > r_first) {
-    const Family family = ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
-                                       std::size(kEdgeOffsets), r_full);
-    ScoreAll(n, r_full, family, options.threads, &ranked);
-    std::sort(ranked.begin(), ranked.end());
+    std::vector<std::vector<uint32_t>> need(directions.size());
+    for (size_t k = 0; k < keys.size(); ++k) {
+      for (double d : keys[k]) {
+        for (const auto& entry : finalists[k]) need[index_of(d)].push_back(entry.second);
+      }
+    }
+    std::vector<std::vector<double>> full(directions.size());
+    std::vector<size_t> full_edges(directions.size());
+    std::vector<double> full_corner(n, 0.0);
+    for (size_t i = 0; i < directions.size(); ++i) {
+      std::vector<uint32_t>& gs = need[i];
+      std::sort(gs.begin(), gs.end());
+      gs.erase(std::unique(gs.begin(), gs.end()), gs.end());
+      if (gs.empty()) {
+        if (progress) progress(++done, total);
+        continue;
+      }
+      const Family f = ScoredFamily({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets), r_full);
+      full_edges[i] = f.edges.size();
+      full[i].resize(gs.size());
+      ParallelOver(gs.size(), options.threads, [&](size_t j) {
+        const Terms t = ScoreTerms(n, gs[j], r_full, f);
+        full[i][j] = t.directions.front();
+        full_corner[gs[j]] = t.corner;  // the same in every direction's pass
+      });
+      if (progress) progress(++done, total);
+    }
+    for (size_t k = 0; k < keys.size(); ++k) {
+      const std::vector<double>& key = keys[k];
+      size_t edges = 0;
+      for (double d : key) edges += full_edges[index_of(d)];
+      std::vector<double> sums(key.size());
+      for (auto& entry : finalists[k]) {
+        for (size_t i = 0; i < key.size(); ++i) {
+          const size_t di = index_of(key[i]);
+          const auto at = std::lower_bound(need[di].begin(), need[di].end(), entry.second);
+          sums[i] = full[di][static_cast<size_t>(at - need[di].begin())];
+        }
+        entry.first = Combine(sums, edges, full_corner[entry.second]);
+      }
+      std::sort(finalists[k].begin(), finalists[k].end());
+    }
   }
-  choice.generator = ranked.front().second;
-  choice.score = ranked.front().first;
-  return choice;
+  std::vector<AlignedLatticeChoice> choices;
+  for (size_t k = 0; k < keys.size(); ++k) {
+    AlignedLatticeChoice choice;
+    choice.candidates = static_cast<uint32_t>(candidates.size());
+    choice.generator = finalists[k].front().second;
+    choice.score = finalists[k].front().first;
+    choices.push_back(choice);
+  }
+  return choices;
+}
+
+StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
+    uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options) {
+  auto choices = ChooseAlignedLatticeGenerators(n, {directions_deg}, options);
+  if (!choices.ok()) return choices.status();
+  return choices->front();
 }
 
 PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/align/canonical.h"
@@ -48,6 +49,16 @@ struct AlignedLatticeChoice {
 // direction that is not finite, or a window outside [0, 10] degrees.
 StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
     uint32_t n, const std::vector<double>& directions_deg, const AlignedLatticeOptions& options = {});
+
+// The same for several keys at once, choice for choice what
+// ChooseAlignedLatticeGenerator gives each alone (which is this with one
+// key): both stages' terms are kept per direction, and each (direction, g)
+// is scored once however many keys it serves (a render's two-direction
+// pairs share their degrees and often their finalists).
+// progress(done, total) after each direction's pass of each stage.
+StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
+    uint32_t n, const std::vector<std::vector<double>>& keys, const AlignedLatticeOptions& options = {},
+    const std::function<void(double done, double total)>& progress = {});
 
 // The score ChooseAlignedLatticeGenerator's final stage gives generator g
 // for these directions (lower is better; the chosen generator's is the

@@ -161,6 +161,33 @@ TEST(AlignedLattice, CanonicalChoiceMapsOntoEveryDirection) {
   EXPECT_EQ(AlignedLatticeScore(1024, 2, {30}).status().code(), Status::Code::kInvalidArgument);
 }
 
+// The batch shares each (direction, g)'s terms between keys; every choice
+// must still be the one the key gets alone, whatever else is in the batch.
+TEST(AlignedLattice, BatchChoosesWhatEachKeyChoosesAlone) {
+  const std::vector<std::vector<double>> keys = {{10}, {30}, {30, 100}, {100, 30}, {45},
+                                                 {135}, {30, 30}, {10, 100}, {12.5, 77}};
+  for (uint32_t n : {64u, 256u, 1024u}) {
+    double last = -1.0;
+    auto batch = ChooseAlignedLatticeGenerators(n, keys, {}, [&](double done, double total) {
+      EXPECT_GT(done, last);
+      EXPECT_LE(done, total);
+      last = done;
+    });
+    ASSERT_TRUE(batch.ok()) << batch.status().message();
+    ASSERT_EQ(batch->size(), keys.size());
+    for (size_t k = 0; k < keys.size(); ++k) {
+      auto alone = ChooseAlignedLatticeGenerator(n, keys[k]);
+      ASSERT_TRUE(alone.ok());
+      EXPECT_EQ((*batch)[k].generator, alone->generator) << "N = " << n << ", key " << k;
+      EXPECT_EQ((*batch)[k].score, alone->score) << "N = " << n << ", key " << k;
+      auto score = AlignedLatticeScore(n, alone->generator, keys[k]);
+      ASSERT_TRUE(score.ok());
+      EXPECT_EQ(*score, alone->score);
+    }
+  }
+  EXPECT_EQ(ChooseAlignedLatticeGenerators(256, {{30}, {}}).status().code(), Status::Code::kInvalidArgument);
+}
+
 TEST(AlignedLattice, RefusesBadInput) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(AlignedLattice(15, {30.0}, 1).status().code(), Status::Code::kInvalidArgument);
