@@ -159,10 +159,6 @@ Status Validate(uint32_t n, const std::vector<double>& directions, const Aligned
   return Status::Ok();
 }
 
-}  // namespace
-
-namespace {
-
 // The two stages' radii: all dual points within N / 2 in the final one,
 // within 8 sqrt(N) (at least 32) in the first.
 int FullRadius(uint32_t n) { return static_cast<int>(n / 2); }
@@ -226,8 +222,7 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   for (const std::vector<double>& key : keys) directions.insert(directions.end(), key.begin(), key.end());
   std::sort(directions.begin(), directions.end());
   directions.erase(std::unique(directions.begin(), directions.end()), directions.end());
-  const double total = static_cast<double>(FullRadius(n) > FirstRadius(n) ? 2 * directions.size()
-                                                                            : directions.size());
+  const double total = static_cast<double>(r_full > r_first ? 2 * directions.size() : directions.size());
   double done = 0.0;
   std::vector<std::vector<double>> coarse(directions.size());
   std::vector<size_t> coarse_edges(directions.size());
