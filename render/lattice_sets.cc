@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "core/align/canonical.h"
 #include "core/optimize/aligned_lattice.h"
 
 namespace alignset::render {
@@ -76,7 +77,8 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   size_t k = 0;
   for (auto& entry : by_key) entry.second = (*choices)[k++].generator;
   for (const Served& s : served) {
-    const uint32_t g = MapLatticeGenerator(n, by_key.at({s.how.key.phi1, s.how.key.phi2}), s.how.ops);
+    const uint32_t g = MapLatticeGenerator(n, by_key.at({s.how.key.phi1, s.how.key.phi2}), s.how.ops.swap,
+                                           s.how.ops.invert, s.how.ops.invert_y);
     // One realization for every pixel: the per-pixel Cranley-Patterson
     // shift is what decorrelates pixels (and keeps each unbiased).
     PointSet points = Rank1LatticePoints(n, g, 0);

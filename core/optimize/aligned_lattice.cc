@@ -194,10 +194,10 @@ StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<d
   return Combine(t.directions, family.edges.size(), t.corner);
 }
 
-uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops) {
-  uint32_t m = ops.swap ? InverseMod(g, n) : g % n;
-  if (ops.invert) m = (n - m) % n;
-  if (ops.invert_y) m = (n - m) % n;
+uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, bool invert_y) {
+  uint32_t m = swap ? InverseMod(g, n) : g % n;
+  if (invert_x) m = (n - m) % n;
+  if (invert_y) m = (n - m) % n;
   return m;
 }
 

@@ -4,7 +4,6 @@
 #include <functional>
 #include <vector>
 
-#include "core/align/canonical.h"
 #include "core/util/point_set.h"
 #include "core/util/status.h"
 
@@ -66,15 +65,16 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
 StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
                                      const AlignedLatticeOptions& options = {});
 
-// The generator of the lattice that `ops` carries the lattice of generator g
-// onto, as a set of points up to a shift: swapping x and y takes g to its
-// inverse mod N, each inversion to N - g. The directions map as ops maps
-// them (core/align/canonical.h), and so does the scored family of edges, so
-// the image of the lattice chosen for a canonical key scores for the mapped
-// directions what the choice scored for the key: a renderer chooses once
-// per orbit (46 one-direction keys instead of 180 degrees). g must be
-// coprime to N.
-uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, const AlignOps& ops);
+// The generator of the lattice that a symmetry of the square carries the
+// lattice of generator g onto, as a set of points up to a shift: swapping x
+// and y (first) takes g to its inverse mod N, inverting x or y (after) to
+// N - g; the flags are core/align's AlignOps, which core/optimize does not
+// include. The directions map as the symmetry maps them, and so does the
+// scored family of edges, so the image of the lattice chosen for a
+// canonical key scores for the mapped directions what the choice scored for
+// the key: a renderer chooses once per orbit (46 one-direction keys instead
+// of 180 degrees). g must be coprime to N.
+uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, bool invert_y);
 
 // The lattice with generator g and realization `seed`: the shift is a whole
 // number of columns and rows drawn from the seed plus half a cell, so every

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <vector>
 
+#include "core/align/canonical.h"
 #include "core/analysis/integrands.h"
 #include "core/analysis/lattice_variance.h"
 #include "core/sampling/rank1_lattice.h"
@@ -136,7 +137,8 @@ TEST(AlignedLattice, CanonicalChoiceMapsOntoEveryDirection) {
       auto canonical = ChooseAlignedLatticeGenerator(n, key);
       auto direct = ChooseAlignedLatticeGenerator(n, dirs);
       ASSERT_TRUE(canonical.ok() && direct.ok());
-      const uint32_t g = MapLatticeGenerator(n, canonical->generator, how->ops);
+      const uint32_t g =
+          MapLatticeGenerator(n, canonical->generator, how->ops.swap, how->ops.invert, how->ops.invert_y);
       auto mapped = AlignedLatticeScore(n, g, dirs);
       ASSERT_TRUE(mapped.ok()) << mapped.status().message();
       EXPECT_NEAR(*mapped, direct->score, 1e-8) << "N = " << n << ", " << dirs[0] << " deg: g " << g
@@ -154,9 +156,10 @@ TEST(AlignedLattice, CanonicalChoiceMapsOntoEveryDirection) {
   }
   // g -> N - g and g -> g^-1 are involutions, and map generators to generators.
   for (uint32_t g : {1u, 3u, 77u, 1023u}) {
-    EXPECT_EQ(MapLatticeGenerator(1024, MapLatticeGenerator(1024, g, {true, false, false}), {true, false, false}), g);
-    EXPECT_EQ(MapLatticeGenerator(1024, g, {false, true, false}), 1024 - g);
-    EXPECT_EQ(MapLatticeGenerator(1024, g, {true, false, false}) * uint64_t{g} % 1024, 1u);
+    EXPECT_EQ(MapLatticeGenerator(1024, MapLatticeGenerator(1024, g, true, false, false), true, false, false), g);
+    EXPECT_EQ(MapLatticeGenerator(1024, g, false, true, false), 1024 - g);
+    EXPECT_EQ(MapLatticeGenerator(1024, g, false, false, true), 1024 - g);
+    EXPECT_EQ(MapLatticeGenerator(1024, g, true, false, false) * uint64_t{g} % 1024, 1u);
   }
   EXPECT_EQ(AlignedLatticeScore(1024, 2, {30}).status().code(), Status::Code::kInvalidArgument);
 }
