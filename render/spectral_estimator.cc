@@ -197,11 +197,15 @@ class SpectralEstimator : public DirectionEstimator {
         const size_t i = static_cast<size_t>(y) * w + x;
         const uint64_t h = HashCombine(seed, i);
         row[x] = Sample(scene.Pixel(i), h);
-        out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
-        if (shared) {
-          StatusOr<PatchCrossings> c = FindCrossings(row[x], lines_);
-          if (c.ok()) crossing_rows[k][x] = std::move(*c);
+        if (!shared) {
+          out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
+          return;
         }
+        // The pixel's own fit and the stacks read the same crossings.
+        StatusOr<PatchCrossings> c = FindCrossings(row[x], lines_);
+        out[i] = Finish(c.ok() ? EstimateEdgeLines(*c, lines_) : StatusOr<DirectionEstimate>(c.status()),
+                        Mean(row[x].values), h);
+        if (c.ok()) crossing_rows[k][x] = std::move(*c);
       });
     };
     for (int k = radius; k < side; ++k) {

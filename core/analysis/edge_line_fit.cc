@@ -364,17 +364,23 @@ std::vector<Point2> Crossings(const SampledPatch& patch, const EdgeLineOptions& 
 }  // namespace
 
 StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
-  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
+  StatusOr<PatchCrossings> c = FindCrossings(patch, o);
+  if (!c.ok()) return c.status();
+  return EstimateEdgeLines(*c, o);
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLines(const PatchCrossings& c, const EdgeLineOptions& o) {
+  if (c.samples == 0) return Status::InvalidArgument("edge lines: the crossings of an empty patch");
   if (Status s = ValidateOptions(o); !s.ok()) return s;
   DirectionEstimate out;
   out.has_second = o.second;
-  const size_t n = patch.points.size();
-  if (!NonConstant(patch)) {
+  const size_t n = c.samples;
+  if (c.constant) {
     NoLines("constant patch", &out);
     return out;
   }
   const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
-  const std::vector<Point2> mid = Crossings(patch, o);
+  const std::vector<Point2>& mid = c.midpoints;
   const size_t k = mid.size();
   out.frequencies = k;
   if (k < static_cast<size_t>(o.min_crossings)) {

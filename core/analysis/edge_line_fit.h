@@ -113,6 +113,12 @@ struct PatchCrossings {
 };
 // INVALID_ARGUMENT for an invalid patch or options.
 StatusOr<PatchCrossings> FindCrossings(const SampledPatch& patch, const EdgeLineOptions& options = {});
+// EstimateEdgeLines from the patch's crossings, found with the same
+// options: the same estimate, to the last bit (a renderer that also stacks
+// the pixel's crossings finds them once). INVALID_ARGUMENT for crossings of
+// no samples or options out of range.
+StatusOr<DirectionEstimate> EstimateEdgeLines(const PatchCrossings& crossings,
+                                              const EdgeLineOptions& options = {});
 // EstimateEdgeLinesStacked from the block's crossings, found with the same
 // options: the same estimate, to the last bit.
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,

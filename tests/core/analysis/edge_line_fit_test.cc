@@ -408,6 +408,12 @@ TEST(EdgeLineFit, StackedFromCrossingsIsStackedFromPatches) {
   std::vector<const PatchCrossings*> mixed(9, &*none);
   mixed[4] = &*other;
   EXPECT_EQ(EstimateEdgeLinesStacked(mixed).status().code(), Status::Code::kInvalidArgument);
+  // A pixel's own fit reads them too: a constant patch has no line, and
+  // crossings of no samples are refused.
+  auto own = EstimateEdgeLines(*none);
+  ASSERT_TRUE(own.ok());
+  EXPECT_NE(own->first.status, DirectionStatus::kFound);
+  EXPECT_EQ(EstimateEdgeLines(PatchCrossings{}).status().code(), Status::Code::kInvalidArgument);
 }
 
 TEST(EdgeLineFit, IsDeterministic) {
