@@ -190,7 +190,7 @@ StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<d
   const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
                                                         std::size(kEdgeOffsets), r_full)
                                          : ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
-  const Terms t = ScoreTerms(n, g, std::max(r_full, r_first), family);
+  const Terms t = ScoreTerms(n, g, r_full, family);  // r_first is r_full where the coarse family is final
   return Combine(t.directions, family.edges.size(), t.corner);
 }
 
@@ -238,20 +238,25 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
     });
     if (progress) progress(++done, total);
   }
-  auto index_of = [&](double d) {
-    return static_cast<size_t>(std::lower_bound(directions.begin(), directions.end(), d) - directions.begin());
-  };
+  // Each key's directions as indices into `directions`.
+  std::vector<std::vector<size_t>> key_at(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) {
+    for (double d : keys[k]) {
+      key_at[k].push_back(
+          static_cast<size_t>(std::lower_bound(directions.begin(), directions.end(), d) - directions.begin()));
+    }
+  }
   // Each key's finalists by the first stage.
   std::vector<std::vector<std::pair<double, uint32_t>>> finalists(keys.size());
   for (size_t k = 0; k < keys.size(); ++k) {
-    const std::vector<double>& key = keys[k];
+    const std::vector<size_t>& at = key_at[k];
     std::vector<std::pair<double, uint32_t>>& ranked = finalists[k];
     ranked.resize(candidates.size());
     size_t edges = 0;
-    for (double d : key) edges += coarse_edges[index_of(d)];
-    std::vector<double> sums(key.size());
+    for (size_t di : at) edges += coarse_edges[di];
+    std::vector<double> sums(at.size());
     for (size_t j = 0; j < candidates.size(); ++j) {
-      for (size_t i = 0; i < key.size(); ++i) sums[i] = coarse[index_of(key[i])][j];
+      for (size_t i = 0; i < at.size(); ++i) sums[i] = coarse[at[i]][j];
       ranked[j] = {Combine(sums, edges, corner[j]), candidates[j]};
     }
     const size_t keep = std::min(ranked.size(), static_cast<size_t>(options.finalists));
@@ -264,8 +269,8 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   if (r_full > r_first) {
     std::vector<std::vector<uint32_t>> need(directions.size());
     for (size_t k = 0; k < keys.size(); ++k) {
-      for (double d : keys[k]) {
-        for (const auto& entry : finalists[k]) need[index_of(d)].push_back(entry.second);
+      for (size_t di : key_at[k]) {
+        for (const auto& entry : finalists[k]) need[di].push_back(entry.second);
       }
     }
     std::vector<std::vector<double>> full(directions.size());
@@ -290,15 +295,14 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
       if (progress) progress(++done, total);
     }
     for (size_t k = 0; k < keys.size(); ++k) {
-      const std::vector<double>& key = keys[k];
+      const std::vector<size_t>& at = key_at[k];
       size_t edges = 0;
-      for (double d : key) edges += full_edges[index_of(d)];
-      std::vector<double> sums(key.size());
+      for (size_t di : at) edges += full_edges[di];
+      std::vector<double> sums(at.size());
       for (auto& entry : finalists[k]) {
-        for (size_t i = 0; i < key.size(); ++i) {
-          const size_t di = index_of(key[i]);
-          const auto at = std::lower_bound(need[di].begin(), need[di].end(), entry.second);
-          sums[i] = full[di][static_cast<size_t>(at - need[di].begin())];
+        for (size_t i = 0; i < at.size(); ++i) {
+          const std::vector<uint32_t>& gs = need[at[i]];
+          sums[i] = full[at[i]][static_cast<size_t>(std::lower_bound(gs.begin(), gs.end(), entry.second) - gs.begin())];
         }
         entry.first = Combine(sums, edges, full_corner[entry.second]);
       }
