@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <iterator>
+#include <limits>
+#include <memory>
 #include <tuple>
 #include <thread>
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "core/analysis/convex_polygon.h"
 #include "core/analysis/integer_indicator_spectrum.h"
 #include "core/analysis/lattice_variance.h"
+#include "core/optimize/lattice_term_cache.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/direction_budget.h"
 #include "core/util/angles.h"
@@ -41,16 +44,14 @@ struct Family {
 };
 
 // The edges scored: for each direction, 2 steps + 1 normals across the
-// window, each through `offsets` of the kEdgeOffsets; their coefficients
-// tabulated for the dual points within `radius`.
-Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg, int steps,
-                    size_t offsets, int radius) {
-  // Each edge's square has two vertices off the corners, one table each.
-  const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets * 2.0 *
-                       (2.0 * radius + 1.0) * sizeof(std::complex<double>);
-  const bool tabulate = bytes <= kMaxTableBytes;
-  Family f;
+// window, each through `offsets` of the kEdgeOffsets; the polygons alone
+// (a key's score divides by their count, which a cached search needs without
+// the tables).
+std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& directions_deg,
+                                                 double window_deg, int steps, size_t offsets) {
+  std::vector<std::vector<Polygon>> out;
   for (double d : directions_deg) {
+    std::vector<Polygon>& polygons = out.emplace_back();
     for (int k = -steps; k <= steps; ++k) {
       const double delta = window_deg * k / steps;
       const Vec2 n = UnitVector(d + delta);
@@ -58,9 +59,24 @@ Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg
         const double offset = kEdgeOffsets[o];
         const double c = 0.5 * (n.x + n.y) + offset;
         Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
-        if (SignedArea(p) > 1e-12) f.edges.emplace_back(p, radius, tabulate);
+        if (SignedArea(p) > 1e-12) polygons.push_back(std::move(p));
       }
     }
+  }
+  return out;
+}
+
+// The same edges with their coefficients tabulated for the dual points
+// within `radius`.
+Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg, int steps,
+                    size_t offsets, int radius) {
+  // Each edge's square has two vertices off the corners, one table each.
+  const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets * 2.0 *
+                       (2.0 * radius + 1.0) * sizeof(std::complex<double>);
+  const bool tabulate = bytes <= kMaxTableBytes;
+  Family f;
+  for (const std::vector<Polygon>& polygons : ScoredPolygons(directions_deg, window_deg, steps, offsets)) {
+    for (const Polygon& p : polygons) f.edges.emplace_back(p, radius, tabulate);
     f.ends.push_back(f.edges.size());
   }
   return f;
@@ -112,13 +128,15 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
 // and the smaller g wins, as the header promises.
 double Quantized(double score) { return std::ldexp(std::nearbyint(std::ldexp(score, 30)), -30); }
 
-// fn(i) for i in [0, count) on `threads` threads (0: all cores); each
-// result depends on its i alone, so nothing depends on the thread count.
+// fn(i) for i in [0, count) on `threads` threads (0: all cores), each
+// thread given at least `grain` items (a thread costs tens of microseconds
+// to start); each result depends on its i alone, so nothing depends on the
+// thread count.
 template <class Fn>
-void ParallelOver(size_t count, int threads, const Fn& fn) {
+void ParallelOver(size_t count, int threads, size_t grain, const Fn& fn) {
   size_t workers = threads > 0 ? static_cast<size_t>(threads)
                                : std::max(1u, std::thread::hardware_concurrency());
-  workers = std::min(workers, std::max<size_t>(1, count / 16));
+  workers = std::min(workers, std::max<size_t>(1, count / grain));
   std::atomic<size_t> next{0};
   auto work = [&] {
     for (size_t i = next++; i < count; i = next++) fn(i);
@@ -207,6 +225,17 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   for (const std::vector<double>& key : keys) {
     if (Status s = Validate(n, key, options); !s.ok()) return s;
   }
+  // Without a cache of the caller's, one for this search alone: every term
+  // goes through a cache either way, so a search with one computes what a
+  // search without one does, to the bit.
+  std::unique_ptr<LatticeTermCache> own;
+  LatticeTermCache* cache = options.cache;
+  if (!cache) {
+    own = std::make_unique<LatticeTermCache>(std::numeric_limits<size_t>::max());
+    cache = own.get();
+  }
+  using Key = LatticeTermCache::Key;
+  using Stage = LatticeTermCache::Stage;
   const int r_full = FullRadius(n);
   const int r_first = FirstRadius(n);
   const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
@@ -224,18 +253,23 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   directions.erase(std::unique(directions.begin(), directions.end()), directions.end());
   const double total = static_cast<double>(r_full > r_first ? 2 * directions.size() : directions.size());
   double done = 0.0;
-  std::vector<std::vector<double>> coarse(directions.size());
+  using Held = LatticeTermCache::Terms;
+  std::vector<std::shared_ptr<const std::vector<Held>>> coarse(directions.size());
   std::vector<size_t> coarse_edges(directions.size());
-  std::vector<double> corner(candidates.size());
   for (size_t i = 0; i < directions.size(); ++i) {
-    const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, 2, r_first);
-    coarse_edges[i] = f.edges.size();
-    coarse[i].resize(candidates.size());
-    ParallelOver(candidates.size(), options.threads, [&](size_t j) {
-      const Terms t = ScoreTerms(n, candidates[j], r_first, f);
-      coarse[i][j] = t.directions.front();
-      if (i == 0) corner[j] = t.corner;  // the same in every direction's pass
-    });
+    const Key key{n, Stage::kCoarse, options.window_deg, directions[i]};
+    coarse_edges[i] = ScoredPolygons({directions[i]}, options.window_deg, 1, 2).front().size();
+    coarse[i] = cache->FindDense(key);
+    if (!coarse[i]) {
+      const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, 2, r_first);
+      auto terms = std::make_shared<std::vector<Held>>(candidates.size());
+      ParallelOver(candidates.size(), options.threads, 16, [&](size_t j) {
+        const Terms t = ScoreTerms(n, candidates[j], r_first, f);
+        (*terms)[j] = {t.directions.front(), t.corner};
+      });
+      coarse[i] = terms;
+      cache->PutDense(key, std::move(terms));
+    }
     if (progress) progress(++done, total);
   }
   // Each key's directions as indices into `directions`.
@@ -256,8 +290,9 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
     for (size_t di : at) edges += coarse_edges[di];
     std::vector<double> sums(at.size());
     for (size_t j = 0; j < candidates.size(); ++j) {
-      for (size_t i = 0; i < at.size(); ++i) sums[i] = coarse[at[i]][j];
-      ranked[j] = {Combine(sums, edges, corner[j]), candidates[j]};
+      for (size_t i = 0; i < at.size(); ++i) sums[i] = (*coarse[at[i]])[j].edges;
+      // The corner term is the same in every direction's pass.
+      ranked[j] = {Combine(sums, edges, (*coarse[at[0]])[j].corner), candidates[j]};
     }
     const size_t keep = std::min(ranked.size(), static_cast<size_t>(options.finalists));
     std::partial_sort(ranked.begin(), ranked.begin() + keep, ranked.end());
@@ -273,9 +308,12 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
         for (const auto& entry : finalists[k]) need[di].push_back(entry.second);
       }
     }
-    std::vector<std::vector<double>> full(directions.size());
+    std::vector<std::vector<Held>> full(directions.size());
     std::vector<size_t> full_edges(directions.size());
-    std::vector<double> full_corner(n, 0.0);
+    // A final term costs about N / 8 dual points times the family's edges
+    // (milliseconds at N = 4096), so a key that misses a few of them, as a
+    // key served one at a time does, still spreads them over the threads.
+    const size_t final_grain = std::max<size_t>(1, 4096 / n);
     for (size_t i = 0; i < directions.size(); ++i) {
       std::vector<uint32_t>& gs = need[i];
       std::sort(gs.begin(), gs.end());
@@ -284,14 +322,43 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
         if (progress) progress(++done, total);
         continue;
       }
-      const Family f = ScoredFamily({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets), r_full);
-      full_edges[i] = f.edges.size();
-      full[i].resize(gs.size());
-      ParallelOver(gs.size(), options.threads, [&](size_t j) {
-        const Terms t = ScoreTerms(n, gs[j], r_full, f);
-        full[i][j] = t.directions.front();
-        full_corner[gs[j]] = t.corner;  // the same in every direction's pass
-      });
+      full_edges[i] = ScoredPolygons({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets))
+                          .front()
+                          .size();
+      const Key key{n, Stage::kFull, options.window_deg, directions[i]};
+      std::vector<bool> found;
+      cache->FindSparse(key, gs, &full[i], &found);
+      std::vector<uint32_t> missing;
+      for (size_t j = 0; j < gs.size(); ++j) {
+        if (!found[j]) missing.push_back(gs[j]);
+      }
+      if (!missing.empty()) {
+        // A caller's cache keeps the family's tables too: a key served alone
+        // misses a few final terms of a direction the keys before it built
+        // (a search's own cache would only hold every direction's at once).
+        const Key family_key{n, Stage::kFullFamily, options.window_deg, directions[i]};
+        auto family = options.cache ? std::static_pointer_cast<const Family>(cache->FindObject(family_key))
+                                    : nullptr;
+        if (!family) {
+          auto built = std::make_shared<const Family>(
+              ScoredFamily({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets), r_full));
+          if (options.cache) {
+            size_t bytes = 0;
+            for (const IntegerIndicatorSpectrum& e : built->edges) bytes += e.TableBytes();
+            cache->PutObject(family_key, built, bytes);
+          }
+          family = std::move(built);
+        }
+        std::vector<Held> terms(missing.size());
+        ParallelOver(missing.size(), options.threads, final_grain, [&](size_t j) {
+          const Terms t = ScoreTerms(n, missing[j], r_full, *family);
+          terms[j] = {t.directions.front(), t.corner};
+        });
+        for (size_t j = 0, m = 0; j < gs.size(); ++j) {
+          if (!found[j]) full[i][j] = terms[m++];
+        }
+        cache->PutSparse(key, missing, terms);
+      }
       if (progress) progress(++done, total);
     }
     for (size_t k = 0; k < keys.size(); ++k) {
@@ -300,11 +367,14 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
       for (size_t di : at) edges += full_edges[di];
       std::vector<double> sums(at.size());
       for (auto& entry : finalists[k]) {
+        double corner = 0.0;
         for (size_t i = 0; i < at.size(); ++i) {
           const std::vector<uint32_t>& gs = need[at[i]];
-          sums[i] = full[at[i]][static_cast<size_t>(std::lower_bound(gs.begin(), gs.end(), entry.second) - gs.begin())];
+          const Held& t = full[at[i]][static_cast<size_t>(std::lower_bound(gs.begin(), gs.end(), entry.second) - gs.begin())];
+          sums[i] = t.edges;
+          corner = t.corner;  // the same in every direction's pass
         }
-        entry.first = Combine(sums, edges, full_corner[entry.second]);
+        entry.first = Combine(sums, edges, corner);
       }
       std::sort(finalists[k].begin(), finalists[k].end());
     }

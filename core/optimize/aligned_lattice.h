@@ -32,10 +32,16 @@ namespace alignset {
 // window's ends and middle) over the dual points within 8 sqrt(N), then the
 // best `finalists` on the whole family within radius N / 2. Ties go to
 // the smallest g, so the choice is a function of (N, directions, options).
+class LatticeTermCache;  // core/optimize/lattice_term_cache.h
+
 struct AlignedLatticeOptions {
   double window_deg = 1.0;
   int finalists = 32;
   int threads = 1;  // 0: all cores; the choice does not depend on it
+  // Terms kept between searches (a server's, shared by its workers): a key
+  // whose directions were searched before costs milliseconds. The choice
+  // does not depend on it.
+  LatticeTermCache* cache = nullptr;
 };
 
 struct AlignedLatticeChoice {

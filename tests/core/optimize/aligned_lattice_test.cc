@@ -9,11 +9,13 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 #include "core/align/canonical.h"
 #include "core/analysis/integrands.h"
 #include "core/analysis/lattice_variance.h"
+#include "core/optimize/lattice_term_cache.h"
 #include "core/sampling/rank1_lattice.h"
 
 namespace alignset {
@@ -189,6 +191,46 @@ TEST(AlignedLattice, BatchChoosesWhatEachKeyChoosesAlone) {
     }
   }
   EXPECT_EQ(ChooseAlignedLatticeGenerators(256, {{30}, {}}).status().code(), Status::Code::kInvalidArgument);
+}
+
+// A server searches key after key over one LatticeTermCache: whatever was
+// searched before, in whatever order, evicted or not, and from two threads
+// at once, each key gets what a fresh search gives it, to the last bit.
+TEST(AlignedLattice, TermCacheChoosesWhatAFreshSearchChooses) {
+  const std::vector<std::vector<double>> keys = {{10}, {30}, {30, 100}, {100, 30}, {45},
+                                                 {135}, {30, 30}, {10, 100}, {12.5, 77}, {30}};
+  for (uint32_t n : {256u, 1024u}) {
+    std::vector<AlignedLatticeChoice> fresh;
+    for (const auto& key : keys) fresh.push_back(*ChooseAlignedLatticeGenerator(n, key));
+    auto check = [&](LatticeTermCache* cache, bool reverse, const char* what) {
+      AlignedLatticeOptions o;
+      o.cache = cache;
+      for (size_t i = 0; i < keys.size(); ++i) {
+        const size_t k = reverse ? keys.size() - 1 - i : i;
+        auto c = ChooseAlignedLatticeGenerator(n, keys[k], o);
+        ASSERT_TRUE(c.ok());
+        EXPECT_EQ(c->generator, fresh[k].generator) << what << ", N = " << n << ", key " << k;
+        EXPECT_EQ(c->score, fresh[k].score) << what << ", N = " << n << ", key " << k;
+      }
+    };
+    LatticeTermCache roomy;
+    check(&roomy, false, "forward");
+    const LatticeTermCache::Stats first = roomy.stats();
+    EXPECT_GT(first.hits, 0u);  // the repeated key and the shared degrees
+    check(&roomy, true, "reverse, every term held");
+    const LatticeTermCache::Stats second = roomy.stats();
+    EXPECT_EQ(second.misses, first.misses) << "a second pass computed terms again";
+    // A bound a few directions' terms wide: entries come and go mid-run.
+    LatticeTermCache tight(n * 24);
+    check(&tight, false, "tight bound");
+    check(&tight, true, "tight bound, reverse");
+    EXPECT_LE(tight.stats().bytes, tight.max_bytes());
+    // Two threads on one cache.
+    LatticeTermCache shared;
+    std::thread other([&] { check(&shared, true, "thread"); });
+    check(&shared, false, "main");
+    other.join();
+  }
 }
 
 TEST(AlignedLattice, RefusesBadInput) {
