@@ -119,6 +119,8 @@ const std::vector<Flag>& Flags() {
        IntFlag(&ServerConfig::max_cache_bytes, "max-cache-bytes", 0, INT64_MAX)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
        IntFlag(&ServerConfig::memory_cache_mb, "memory-cache-mb", 0, 1 << 20)},
+      {"lattice-terms-mb", "M  the lattice search's terms kept between lattice keys (default 128; 0: none)",
+       IntFlag(&ServerConfig::lattice_terms_mb, "lattice-terms-mb", 0, 1 << 20)},
       {"max-request-bytes", "B  largest request message (default 1048576)",
        IntFlag(&ServerConfig::max_request_bytes, "max-request-bytes", 1024, INT32_MAX)},
       {"tls-cert", "PEM    serve TLS with this certificate chain (needs --tls-key)",

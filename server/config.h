@@ -60,6 +60,9 @@ struct ServerConfig {
   int64_t max_cache_bytes = 0;
   // Decoded canonical sets (and their encoded alignments) kept in memory.
   int64_t memory_cache_mb = 512;
+  // The aligned-lattice search's per-direction terms kept between lattice
+  // keys (core/optimize/lattice_term_cache.h); 0 keeps none.
+  int64_t lattice_terms_mb = 128;
   // Largest request message accepted (larger: RESOURCE_EXHAUSTED from gRPC).
   int64_t max_request_bytes = 1 << 20;
   std::string tls_cert;  // PEM; both or neither of cert and key

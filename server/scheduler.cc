@@ -127,7 +127,11 @@ void Ticket::OnDone(std::function<void()> fn) {
 // ------------------------------------------------------------- Scheduler
 
 Scheduler::Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics)
-    : options_(options), cache_(cache), metrics_(metrics), lru_(options.memory_cache_bytes) {}
+    : options_(options),
+      cache_(cache),
+      metrics_(metrics),
+      lru_(options.memory_cache_bytes),
+      lattice_terms_(options.lattice_terms_bytes) {}
 
 StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
                                                        storage::SetCache* cache, Metrics* metrics) {
@@ -750,6 +754,7 @@ Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job,
     AlignedLatticeOptions lattice;
     lattice.window_deg = kLatticeWindowDeg;
     lattice.threads = std::max(1, options_.threads_per_worker);
+    lattice.cache = &lattice_terms_;
     auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
     made = choice.status();
     if (choice.ok()) {

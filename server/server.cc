@@ -144,6 +144,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   so.optimizer.warm_min_points = static_cast<uint32_t>(config.warm_min_n);
   so.seed = config.seed;
   so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
+  so.lattice_terms_bytes = static_cast<size_t>(config.lattice_terms_mb) << 20;
   impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);
   so.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
   // A replica's shipped file was checked where it was made (`alignset cache

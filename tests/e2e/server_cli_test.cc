@@ -25,7 +25,7 @@ TEST(ServerCli, HelpListsEveryFlagWithItsVariableOnStdout) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     for (const char* f : {"--listen", "--db", "--workers", "--threads-per-worker", "--max-n",
                           "--max-iterations", "--engine", "--seed", "--max-queue",
-                          "--memory-cache-mb", "--max-request-bytes", "--tls-cert", "--tls-key",
+                          "--memory-cache-mb", "--lattice-terms-mb", "--max-request-bytes", "--tls-cert", "--tls-key",
                           "--token-file", "--port-file", "--log-level", "--shutdown-grace",
                           "--version"}) {
       EXPECT_NE(r.output.find(f), std::string::npos) << f;

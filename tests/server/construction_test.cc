@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/align/canonical.h"
 #include "core/optimize/aligned_lattice.h"
 #include "server/scheduler.h"
 #include "tests/server/scheduler_fixture.h"
@@ -113,6 +114,41 @@ TEST_F(LatticeJobTest, ALatticeKeyIsComputedWithoutTheEngineAndStored) {
   ASSERT_TRUE(oe.ok()) << oe.status().message();
   EXPECT_NE((*oe)->record().engine, "lattice");
   EXPECT_NE((*oe)->record().points, record.points);
+}
+
+// Lattice keys share the search's terms (Scheduler::Options::
+// lattice_terms_bytes): every key and realization, whatever came before it
+// and however small the bound, is the lattice a fresh search chooses.
+TEST_F(LatticeJobTest, KeysThatShareTheSearchesTermsGetTheLatticeAFreshSearchChooses) {
+  Scheduler::Options o;
+  o.workers = 2;
+  o.threads_per_worker = 1;
+  o.lattice_terms_bytes = 64 << 10;  // a few directions' terms: entries come and go
+  StartWith(o);
+  const std::vector<CanonicalDirections> keys = {{1, 30, 30}, {2, 10, 100}, {2, 30, 100}, {1, 10, 10},
+                                                 {2, 12, 77},  {1, 30, 30, 1}};
+  for (uint32_t realization : {0u, 5u}) {
+    std::vector<std::unique_ptr<Ticket>> tickets;
+    for (const CanonicalDirections& d : keys) {
+      tickets.push_back(MustAcquire(scheduler_->KeyFor(1024, d, realization, Construction::kLattice),
+                                    Priority::kBatch));
+      ASSERT_NE(tickets.back(), nullptr);
+    }
+    for (size_t k = 0; k < keys.size(); ++k) {
+      WaitDone(*tickets[k], 600);
+      auto entry = tickets[k]->Result();
+      ASSERT_TRUE(entry.ok()) << entry.status().message();
+      std::vector<double> dirs = {Phi1Degrees(keys[k])};
+      if (keys[k].count == 2) dirs.push_back(Phi2Degrees(keys[k]));
+      AlignedLatticeOptions fresh;
+      fresh.window_deg = kLatticeWindowDeg;
+      auto choice = ChooseAlignedLatticeGenerator(1024, dirs, fresh);
+      ASSERT_TRUE(choice.ok());
+      EXPECT_EQ((*entry)->record().points, Rank1LatticePoints(1024, choice->generator, realization))
+          << "key " << k << ", realization " << realization;
+    }
+  }
+  EXPECT_EQ(metrics_.optimizations_completed.load(), 2 * keys.size());
 }
 
 }  // namespace
