@@ -16,7 +16,7 @@
 #   keys share no direction: the terms cannot help, the rows show what they
 #   cost) and the two-direction space at 16384 (10 minutes with the terms;
 #   without them one key, extrapolated). The two-direction space at 65536 is
-#   left out: about 40 minutes with the terms.
+#   left out: its first 294 keys took 553 s with the terms (1.9 s a key).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${BUILD_DIR:-build}"
