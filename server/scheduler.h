@@ -143,7 +143,7 @@ class Scheduler {
     size_t memory_cache_bytes = size_t{512} << 20;
     // The lattice search's terms kept between lattice keys (LatticeTermCache):
     // the 4141 pairs of a space at N = 4096 in about a minute instead of
-    // eight, and a key's other realizations in milliseconds.
+    // nine, and a key's other realizations in milliseconds.
     size_t lattice_terms_bytes = size_t{128} << 20;
     // Called (from a worker) when a finished set could not be written.
     std::function<void(const Status&)> on_write_error;

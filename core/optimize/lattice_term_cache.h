@@ -6,7 +6,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -20,9 +19,9 @@ namespace alignset {
 // (direction, generator) once, as a batch of all of them would: at N = 4096
 // the pairs take 27 s in one batch on two cores, 9 minutes through the
 // server one by one without this and 67 s with it (bench/lattice_fill.sh).
-// The values are the very doubles a fresh search
-// computes, so a choice never depends on what was searched before it, on
-// the order, or on what was evicted; tests/core/optimize checks it.
+// The values are the very doubles a fresh search computes, so a choice
+// never depends on what was searched before it, on the order, or on what
+// was evicted; tests/core/optimize checks it.
 //
 // Entries are per (N, window, direction, stage); the least recently used go
 // first once `max_bytes` is passed. Thread-safe: two searches that miss the
