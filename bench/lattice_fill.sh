@@ -47,16 +47,17 @@ fill() {
   seconds[$tag]=$(/usr/bin/python3 -c "import sys; print('%.2f' % (float(sys.argv[2]) - float(sys.argv[1])))" "$t0" "$t1")
   echo "lattice_fill: $tag $* ${seconds[$tag]} s" >&2
 }
-# same A B: how many keys both files hold and how many of them differ.
+# same A B: how many keys both files hold and how many of them differ
+# (`alignset cache diff`: the points, bit for bit).
 same() {
-  /usr/bin/python3 - "$WORK/$1.sqlite" "$WORK/$2.sqlite" <<'PY'
-import sqlite3, sys
-q = "select n, dir_count, phi1, phi2, realization, profile, checksum, points from sets"
-a = {r[:6]: r[6:] for r in sqlite3.connect(sys.argv[1]).execute(q)}
-b = {r[:6]: r[6:] for r in sqlite3.connect(sys.argv[2]).execute(q)}
-common = set(a) & set(b)
-print('%d keys, %d differ' % (len(common), sum(a[k] != b[k] for k in common)))
-PY
+  local summary
+  summary=$("$CLI" cache diff --shared-only "$WORK/$1.sqlite" "$WORK/$2.sqlite" | tail -1) || true
+  [[ $summary =~ ^compared\ ([0-9]+)\ shared\ sets:\ [0-9]+\ the\ same,\ ([0-9]+)\ differ,\ ([0-9]+)\ damaged ]] || {
+    echo "lattice_fill: cache diff said: $summary" >&2
+    echo "not compared"
+    return
+  }
+  echo "${BASH_REMATCH[1]} keys, $((BASH_REMATCH[2] + BASH_REMATCH[3])) differ"
 }
 
 rows=()

@@ -1,6 +1,6 @@
 // `alignset cache ...`: maintenance of SQLite cache files (export, import,
-// merge of precompute shards, verify, recover, list). Works on the files
-// directly, so it needs no running server.
+// merge of precompute shards, verify, recover, list, diff). Works on the
+// files directly, so it needs no running server.
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "client/commands.h"
+#include "storage/cache_diff.h"
 #include "storage/cache_recovery.h"
 #include "storage/partial_file.h"
 #include "storage/set_cache.h"
@@ -26,6 +27,8 @@ struct CacheOptions {
   std::optional<int64_t> n;
   std::optional<std::string> profile;
   bool force = false;  // overwrite an existing OUT.partial
+  std::string first, second;  // diff's two files
+  bool shared_only = false;    // diff: keys held by one file only are not a difference
 };
 
 // Local work: a bad argument or a missing file is a usage error (2), any
@@ -190,6 +193,50 @@ int RunList(const CacheOptions& o) {
   return 0;
 }
 
+// Exit 0 when the files agree, 1 when they differ (as diff(1) does), 2 on
+// usage. Keys only one file holds are listed and count as a difference
+// unless --shared-only (two shards, or two servers that filled different
+// keys, agree when every key they share holds the same points).
+int RunDiff(const CacheOptions& o) {
+  const std::string& a = o.first;
+  const std::string& b = o.second;
+  if (Status s = CheckInputs({a, b}); !s.ok()) return Fail("diff", s);
+  std::optional<uint32_t> n;
+  if (o.n) n = static_cast<uint32_t>(*o.n);
+  auto first = OpenDb(a, true);
+  if (!first.ok()) return Fail("diff", first.status());
+  auto second = OpenDb(b, true);
+  if (!second.ok()) return Fail("diff", second.status());
+  auto diff = storage::DiffCaches(**first, **second, n, o.profile);
+  if (!diff.ok()) return Fail("diff", diff.status());
+  for (size_t i = 0; i < diff->differing.size(); ++i) {
+    std::printf("DIFFERS %s: %lld of %u points\n", storage::KeyToString(diff->differing[i]).c_str(),
+                static_cast<long long>(diff->points_differing[i]), diff->differing[i].n);
+  }
+  for (size_t i = 0; i < diff->damaged.size(); ++i) {
+    const int in = diff->damaged_in[i];
+    std::printf("DAMAGED %s in %s\n", storage::KeyToString(diff->damaged[i]).c_str(),
+                in == 3 ? "both files" : (in == 1 ? a : b).c_str());
+  }
+  if (!o.shared_only) {
+    for (const storage::SetKey& k : diff->only_first) {
+      std::printf("ONLY %s %s\n", a.c_str(), storage::KeyToString(k).c_str());
+    }
+    for (const storage::SetKey& k : diff->only_second) {
+      std::printf("ONLY %s %s\n", b.c_str(), storage::KeyToString(k).c_str());
+    }
+  }
+  const int64_t shared = diff->same + static_cast<int64_t>(diff->differing.size() + diff->damaged.size());
+  const bool agree =
+      diff->SharedAgree() && (o.shared_only || (diff->only_first.empty() && diff->only_second.empty()));
+  std::printf("compared %lld shared sets: %lld the same, %zu differ, %zu damaged; %zu only in %s, "
+              "%zu only in %s; %s\n",
+              static_cast<long long>(shared), static_cast<long long>(diff->same), diff->differing.size(),
+              diff->damaged.size(), diff->only_first.size(), a.c_str(), diff->only_second.size(), b.c_str(),
+              agree ? "the files agree" : "the files differ");
+  return agree ? kExitOk : kExitFailure;
+}
+
 // One cache subcommand: its options and the callback that runs it.
 CLI::App* AddSub(CLI::App* cache, const std::string& name, const std::string& description,
                  int (*run)(const CacheOptions&), std::shared_ptr<CacheOptions>* options) {
@@ -204,12 +251,12 @@ CLI::App* AddSub(CLI::App* cache, const std::string& name, const std::string& de
 
 void AddCacheCommand(CLI::App& app) {
   CLI::App* cache = AddCommand(app, "cache",
-                               "maintain SQLite cache files (export, import, merge, verify, recover, list);\n"
+                               "maintain SQLite cache files (export, import, merge, verify, recover, list, diff);\n"
                                "works on the files directly, no server needed");
   cache->require_subcommand(1);
   cache->footer(
-      "Exit status: 0 success; 1 failure (damaged sets found and skipped, or a SQLite or file\n"
-      "system error); 2 usage (a wrong command line, a named file that is missing, an output\n"
+      "Exit status: 0 success; 1 failure (damaged sets found and skipped, files that differ,\n"
+      "or a SQLite or file system error); 2 usage (a wrong command line, a named file that is missing, an output\n"
       "that already exists).");
   std::shared_ptr<CacheOptions> o;
   CLI::App* c = AddSub(cache, "export", "a consistent copy of the cache (FILE must not exist)",
@@ -244,6 +291,17 @@ void AddCacheCommand(CLI::App& app) {
   c->add_option("--db", o->db, "the cache file")->required();
   c->add_option("-n,--n", o->n, "only this N")->check(IntegerIn(1, UINT32_MAX));
   c->add_option("--profile", o->profile, "only this profile id");
+
+  c = AddSub(cache, "diff",
+             "compare two cache files set by set: the points under every shared key, bit for bit\n"
+             "(two servers or shards of one deployment must agree); exit 1 when they differ",
+             RunDiff, &o);
+  c->add_option("FIRST", o->first, "a cache file")->required();
+  c->add_option("SECOND", o->second, "the other")->required();
+  c->add_option("-n,--n", o->n, "only this N")->check(IntegerIn(1, UINT32_MAX));
+  c->add_option("--profile", o->profile, "only this profile id");
+  c->add_flag("--shared-only", o->shared_only,
+              "keys held by one file only are not a difference (shards, partly filled servers)");
 }
 
 }  // namespace alignset::cli

@@ -124,6 +124,49 @@ TEST(CacheCli, MergeLeavesAnExistingPartialFileAloneUnlessForced) {
   EXPECT_FALSE(std::filesystem::exists(out + ".partial"));
 }
 
+// Exit 0 when the files agree, 1 when they differ, as diff(1); keys one file
+// lacks count unless --shared-only.
+TEST(CacheCli, DiffComparesTheSharedSetsBitForBit) {
+  TempDir dir;
+  const std::string a = dir.File("a.sqlite"), b = dir.File("b.sqlite");
+  WriteShard(a, {Key1(64, 0), Key1(64, 1), Key2(128, 2, 3)});
+  WriteShard(b, {Key1(64, 0), Key1(64, 1)});
+  CliRun r = Cli("diff " + a + " " + b);
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("ONLY " + a + " n=128 dirs=2:2,3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("compared 2 shared sets: 2 the same, 0 differ, 0 damaged; 1 only in " + a +
+                       ", 0 only in " + b + "; the files differ"),
+            std::string::npos) << r.out;
+  r = Cli("diff --shared-only " + a + " " + b);
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(r.out.find("ONLY "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the files agree"), std::string::npos) << r.out;
+  EXPECT_EQ(Cli("diff -n 64 " + a + " " + b).rc, 0);
+
+  {  // another fill of one key, its last point moved
+    auto cache = SetCache::Open(b);
+    ASSERT_TRUE(cache.ok());
+    SetRecord rec = MakeRecord(Key1(64, 1), 1);
+    rec.points.back().x = 0.5 * rec.points.back().x;
+    ASSERT_TRUE((*cache)->Put(rec).ok());
+  }
+  r = Cli("diff --shared-only " + b + " " + a);
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("DIFFERS n=64 dirs=1:1 profile=0123456789abcdef: 1 of 64 points"),
+            std::string::npos) << r.out;
+  {
+    RawDb raw(a);
+    ASSERT_TRUE(raw.FlipBlobByte(Key1(64, 0), 17));
+  }
+  r = Cli("diff --shared-only " + b + " " + a);
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("DAMAGED n=64 dirs=1:0 profile=0123456789abcdef in " + a), std::string::npos)
+      << r.out;
+  EXPECT_EQ(Cli("diff " + a).rc, 2);
+  EXPECT_EQ(Cli("diff " + a + " " + dir.File("missing.sqlite")).rc, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir.File("missing.sqlite")));
+}
+
 TEST(CacheCli, UsageErrorsExitTwo) {
   TempDir dir;
   EXPECT_EQ(Cli("").rc, 2);
