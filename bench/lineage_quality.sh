@@ -15,12 +15,15 @@
 # Gaussians moved by up to 22% under another shift seed, as much as the
 # differences being measured (bench/results/lineage_warmup_large_n.md).
 #   bench/lineage_quality.sh [BUILD_DIR] [OUT_DIR]    (SUMMARY_ONLY=1: re-read OUT_DIR's tsv files)
+#   ANGLES=1: other angles at N = 4096 instead (one direction at 10 and 82 deg, two at 12 and 80,
+#   near the axes, where the chain from theta - 3 runs beside an axis strip), 36 seeds each;
+#   OUT_DIR then defaults to bench/results/lineage_quality_angles.
 #   SEEDS=S (default 12) for the N = 4096 two-direction case, SEEDS_ONE (default 36) for the
 #   one-direction one: with 12 seeds its axis edge at 0 deg (1.078, interval 0.99-1.16) could not
 #   be told from the 5% the lineage may lose.
 set -euo pipefail
 build=${1:-build}
-out=${2:-bench/results/lineage_quality}
+out=${2:-bench/results/lineage_quality${ANGLES:+_angles}}
 cache=${CACHE:-$build/bench-cache/lineage}
 seeds=${SEEDS:-12}
 seeds_one=${SEEDS_ONE:-36}
@@ -40,7 +43,12 @@ run() {  # tag seeds args...   (SHIFT_SEEDS="A B ...": evaluate each set once pe
     done
   done
 }
-if [[ -z ${SUMMARY_ONLY:-} ]]; then
+if [[ -z ${SUMMARY_ONLY:-} && -n ${ANGLES:-} ]]; then
+  rm -f "$out"/*.tsv
+  run n4096one10 "$seeds_one" --n 4096 --theta 10 --warm-root 7
+  run n4096one82 "$seeds_one" --n 4096 --theta 82 --warm-root 79
+  run n4096two12 "$seeds_one" --n 4096 --theta 12 --theta2 80 --warm-root 9
+elif [[ -z ${SUMMARY_ONLY:-} ]]; then
   rm -f "$out"/*.tsv
   run n4096one "$seeds_one" --n 4096 --theta 40 --warm-root 37
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
@@ -53,7 +61,7 @@ import collections, glob, math, os, random, re, sys
 out = sys.argv[1]
 random.seed(1)
 tags = sorted({os.path.basename(f).split('_')[0] for f in glob.glob(os.path.join(out, '*_s*.tsv'))},
-              key=lambda t: (int(t[1:].rstrip('onetwo')), t))
+              key=lambda t: (int(re.match(r'n(\d+)', t).group(1)), t))
 def gm(logs):
     return math.exp(sum(logs) / len(logs))
 def cell(logs):
