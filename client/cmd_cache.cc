@@ -256,8 +256,8 @@ void AddCacheCommand(CLI::App& app) {
   cache->require_subcommand(1);
   cache->footer(
       "Exit status: 0 success; 1 failure (damaged sets found and skipped, files that differ,\n"
-      "or a SQLite or file system error); 2 usage (a wrong command line, a named file that is missing, an output\n"
-      "that already exists).");
+      "or a SQLite or file system error); 2 usage (a wrong command line, a named file that is\n"
+      "missing, an output that already exists).");
   std::shared_ptr<CacheOptions> o;
   CLI::App* c = AddSub(cache, "export", "a consistent copy of the cache (FILE must not exist)",
                        RunExport, &o);
