@@ -209,14 +209,13 @@ int RunDiff(const CacheOptions& o) {
   if (!second.ok()) return Fail("diff", second.status());
   auto diff = storage::DiffCaches(**first, **second, n, o.profile);
   if (!diff.ok()) return Fail("diff", diff.status());
-  for (size_t i = 0; i < diff->differing.size(); ++i) {
-    std::printf("DIFFERS %s: %lld of %u points\n", storage::KeyToString(diff->differing[i]).c_str(),
-                static_cast<long long>(diff->points_differing[i]), diff->differing[i].n);
+  for (const storage::CacheDiff::Differing& d : diff->differing) {
+    std::printf("DIFFERS %s: %lld of %u points\n", storage::KeyToString(d.key).c_str(),
+                static_cast<long long>(d.points), d.key.n);
   }
-  for (size_t i = 0; i < diff->damaged.size(); ++i) {
-    const int in = diff->damaged_in[i];
-    std::printf("DAMAGED %s in %s\n", storage::KeyToString(diff->damaged[i]).c_str(),
-                in == 3 ? "both files" : (in == 1 ? a : b).c_str());
+  for (const storage::CacheDiff::Damaged& d : diff->damaged) {
+    std::printf("DAMAGED %s in %s\n", storage::KeyToString(d.key).c_str(),
+                d.in_first && d.in_second ? "both files" : (d.in_first ? a : b).c_str());
   }
   if (!o.shared_only) {
     for (const storage::SetKey& k : diff->only_first) {

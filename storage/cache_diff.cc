@@ -54,11 +54,9 @@ StatusOr<CacheDiff> DiffCaches(SetCache& first, SetCache& second, std::optional<
       if (!r->ok() && r->status().code() != Status::Code::kDataLoss) return r->status();
     }
     if (!ra.ok() || !rb.ok()) {
-      diff.damaged.push_back(key);
-      diff.damaged_in.push_back((ra.ok() ? 0 : 1) | (rb.ok() ? 0 : 2));
+      diff.damaged.push_back({key, !ra.ok(), !rb.ok()});
     } else if (const int64_t d = PointsDiffering(ra->points, rb->points); d > 0) {
-      diff.differing.push_back(key);
-      diff.points_differing.push_back(d);
+      diff.differing.push_back({key, d});
     } else {
       ++diff.same;
     }

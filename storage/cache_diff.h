@@ -11,21 +11,27 @@
 namespace alignset::storage {
 
 // Two cache files compared set by set. A set is a function of its key
-// (docs/architecture.md): two servers of one deployment, two shards of one
+// (core/align/key_lineage.h): two servers of one deployment, two shards of one
 // precompute, or a fill before and after a change that must not move the
 // sets, hold the same points under every key they share, bit for bit. The
 // metadata (timings, creation time, engine name) is not compared: it
 // differs between two fills of the same set.
 struct CacheDiff {
-  int64_t same = 0;                  // shared keys whose points are bit-identical
-  std::vector<SetKey> differing;     // shared keys whose points differ
-  std::vector<int64_t> points_differing;  // per `differing` key: how many of its points
-  std::vector<SetKey> only_first;    // keys the second file lacks
-  std::vector<SetKey> only_second;   // keys the first file lacks
-  // Shared keys whose row fails its checksum (DataLoss on read) in one file
-  // or both: per key, `damaged_in` is 1 (the first), 2 (the second) or 3.
-  std::vector<SetKey> damaged;
-  std::vector<int> damaged_in;
+  struct Differing {
+    SetKey key;
+    int64_t points = 0;  // how many of its points differ
+  };
+  // A shared key whose row fails its checksum (DataLoss on read).
+  struct Damaged {
+    SetKey key;
+    bool in_first = false;
+    bool in_second = false;
+  };
+  int64_t same = 0;  // shared keys whose points are bit-identical
+  std::vector<Differing> differing;
+  std::vector<Damaged> damaged;
+  std::vector<SetKey> only_first;   // keys the second file lacks
+  std::vector<SetKey> only_second;  // keys the first file lacks
 
   // Nothing differs and nothing is damaged among the shared keys.
   bool SharedAgree() const { return differing.empty() && damaged.empty(); }

@@ -74,8 +74,8 @@ TEST(DiffCaches, FindsOnePointOneUlpApartAndKeysOnlyOneFileHolds) {
   ASSERT_TRUE(d.ok()) << d.status().ToString();
   EXPECT_EQ(d->same, 1);
   ASSERT_EQ(d->differing.size(), 1u);
-  EXPECT_EQ(d->differing[0], moved);
-  EXPECT_EQ(d->points_differing[0], 1);
+  EXPECT_EQ(d->differing[0].key, moved);
+  EXPECT_EQ(d->differing[0].points, 1);
   EXPECT_FALSE(d->SharedAgree());
   EXPECT_EQ(d->only_first.size(), 2u);
   EXPECT_TRUE(Holds(d->only_first, only_a));
@@ -118,10 +118,12 @@ TEST(DiffCaches, ADamagedRowIsNamedWithItsFileNotCountedTheSame) {
   EXPECT_EQ(d->same, 1);
   EXPECT_TRUE(d->differing.empty());
   ASSERT_EQ(d->damaged.size(), 2u);
-  EXPECT_EQ(d->damaged[0], k2);
-  EXPECT_EQ(d->damaged_in[0], 2);
-  EXPECT_EQ(d->damaged[1], k3);
-  EXPECT_EQ(d->damaged_in[1], 3);
+  EXPECT_EQ(d->damaged[0].key, k2);
+  EXPECT_FALSE(d->damaged[0].in_first);
+  EXPECT_TRUE(d->damaged[0].in_second);
+  EXPECT_EQ(d->damaged[1].key, k3);
+  EXPECT_TRUE(d->damaged[1].in_first);
+  EXPECT_TRUE(d->damaged[1].in_second);
   EXPECT_FALSE(d->SharedAgree());
 }
 
