@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tests/storage/test_util.h"
@@ -15,17 +16,10 @@ using testing::MakeRecord;
 using testing::MustOpen;
 using testing::RawDb;
 using testing::TempDir;
+using testing::WithRealization;
 
 bool Holds(const std::vector<SetKey>& keys, const SetKey& k) {
-  for (const SetKey& x : keys) {
-    if (x == k) return true;
-  }
-  return false;
-}
-
-SetKey WithRealization(SetKey k, uint32_t r) {
-  k.realization = r;
-  return k;
+  return std::ranges::find(keys, k) != keys.end();
 }
 
 TEST(DiffCaches, SameSetsFilledAtOtherTimesAgree) {

@@ -13,11 +13,7 @@ namespace {
 using testing::Key1;
 using testing::MakeRecord;
 using testing::TempDir;
-
-SetKey WithRealization(SetKey k, uint32_t r) {
-  k.realization = r;
-  return k;
-}
+using testing::WithRealization;
 
 // A cache file as a build before realizations wrote it (schema version 2),
 // holding `rec` as its only set.

@@ -52,6 +52,12 @@ inline SetKey Key2(uint32_t n, int phi1, int phi2, std::string profile = "012345
   return k;
 }
 
+// The key's realization r (0 is the one every key always had).
+inline SetKey WithRealization(SetKey k, uint32_t r) {
+  k.realization = r;
+  return k;
+}
+
 inline uint64_t KeyHash(const SetKey& k) {
   uint64_t h = HashCombine(k.n, static_cast<uint64_t>(k.dirs.count));
   h = HashCombine(h, static_cast<uint64_t>(k.dirs.phi1));
