@@ -90,7 +90,8 @@ struct Options {
   int warm_iterations = 0;
   // Degrees per warm step (0: one step from the root straight to theta).
   double warm_step = 1.0;
-  double warm_lr_scale = 1.0;
+  // The warm first step over the default (0: the profile's, WarmStartOptions).
+  double warm_lr_scale = 0.0;
   double warm_warmup = -1.0;  // < 0: the profile's warm_warmup_fraction
   double warm_anneal = 1.0;
   // --construction net: the aligned net's options (core/optimize/aligned_net.h).
@@ -418,7 +419,13 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     << (o.construction == "net-start" ? ";start=net" : "");
   if (o.construction == "warm") {
     if (o.warm_step != 1.0) s << ";warmstep=" << o.warm_step;
-    s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << o.warm_lr_scale << ","
+    // The effective first-step scale, so that the sets cached before the
+    // profile's two-direction scale existed keep their keys.
+    const double lr_scale =
+        o.warm_lr_scale > 0.0
+            ? o.warm_lr_scale
+            : WarmStartOptions(o.opt, n, std::isnan(o.theta2) ? 1 : 2).learning_rate_scale;
+    s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << lr_scale << ","
       << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction << ","
       << o.opt.warm_warmup_fraction;
     if (o.warm_zero >= 0) s << ",z" << o.warm_zero;
@@ -519,11 +526,7 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
     if (o.warm_warmup >= 0) opt.warmup_fraction = o.warm_warmup;
     opt.anneal_ratio = o.warm_anneal;
     if (o.warm_zero >= 0) opt.zero_radius = o.warm_zero;
-    if (o.warm_lr_scale != 1.0) {
-      opt.learning_rate =
-          o.warm_lr_scale * DefaultLearningRate(BuildFrequencySet(
-                                *problem.frequency_params, AnisotropyDirections(problem.directions)));
-    }
+    if (o.warm_lr_scale > 0.0) opt.learning_rate_scale = o.warm_lr_scale;
   }
   if (o.construction == "net-start") {
     auto start = AlignedNet(n, problem.directions, static_cast<uint64_t>(seed), o.net);

@@ -13,7 +13,7 @@ namespace {
 // size; this stops the build until the field is added to ProfileText (or
 // deliberately left out there), so a new parameter can never be silently
 // missing from the cache key.
-static_assert(sizeof(OptimizerOptions) == 200,
+static_assert(sizeof(OptimizerOptions) == 224,
               "OptimizerOptions changed: update ProfileText and this size");
 static_assert(sizeof(FrequencyParams) == 3 * sizeof(double),
               "FrequencyParams changed: update ProfileText and this size");
@@ -51,6 +51,7 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "radius", params.radius);
   Field(t, "max_iterations", o.max_iterations);
   Field(t, "learning_rate", o.learning_rate);
+  Field(t, "learning_rate_scale", o.learning_rate_scale);
   Field(t, "sw_weight", o.sw_weight);
   Field(t, "weight_exponent", o.weighting.exponent);
   Field(t, "warmup_exponent", o.warmup_weighting.exponent);
@@ -72,6 +73,8 @@ std::string ProfileText(const FrequencyParams& params, const OptimizerOptions& o
   Field(t, "min_learning_rate", o.min_learning_rate);
   Field(t, "warm_budget_fraction", o.warm_budget_fraction);
   Field(t, "warm_warmup_fraction", o.warm_warmup_fraction);
+  Field(t, "warm_pair_learning_rate_scale", o.warm_pair_learning_rate_scale);
+  Field(t, "warm_pair_learning_rate_max_points", o.warm_pair_learning_rate_max_points);
   Field(t, "warm_min_points", o.warm_min_points);
   Field(t, "warm_warmup_max_points", o.warm_warmup_max_points);
   // progress_every is left out on purpose: it only sets how often the

@@ -27,7 +27,9 @@ namespace alignset::storage {
 //    last bits (up to 1e-13 after a descent), not in quality.
 // 8: warm descents above N = 32768 run without the warm-up share
 //    (warm_warmup_max_points); the sets at N <= 32768 are version 7's bytes.
-inline constexpr int kAlgorithmVersion = 8;
+// 9: two-direction warm descents up to N = 4096 start with twice the default
+//    step (warm_pair_learning_rate_scale); every other set is version 8's.
+inline constexpr int kAlgorithmVersion = 9;
 
 // Identifies how a set was made: every optimization parameter and the
 // algorithm version, hashed into a short stable hex id. A changed parameter

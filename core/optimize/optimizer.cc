@@ -100,6 +100,9 @@ OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
   warm.max_iterations =
       std::max(1, static_cast<int>(std::lround(cold.warm_budget_fraction * budget)));
   warm.warmup_fraction = n <= cold.warm_warmup_max_points ? cold.warm_warmup_fraction : 0.0;
+  if (arbitrary_directions >= 2 && n <= cold.warm_pair_learning_rate_max_points) {
+    warm.learning_rate_scale = cold.warm_pair_learning_rate_scale;
+  }
   return warm;
 }
 
@@ -208,6 +211,10 @@ Status ValidateOptions(const OptimizerOptions& o) {
   }
   if (!(o.learning_rate >= 0.0) || !std::isfinite(o.learning_rate)) {
     return Status::InvalidArgument("learning_rate must be finite and >= 0");
+  }
+  if (!(o.learning_rate_scale > 0.0) || !std::isfinite(o.learning_rate_scale) ||
+      !(o.warm_pair_learning_rate_scale > 0.0) || !std::isfinite(o.warm_pair_learning_rate_scale)) {
+    return Status::InvalidArgument("learning_rate_scale and warm_pair_learning_rate_scale must be finite and > 0");
   }
   if (!(o.sw_weight >= 0.0) || !std::isfinite(o.sw_weight)) {
     return Status::InvalidArgument("sw_weight must be finite and >= 0");
@@ -355,7 +362,8 @@ OptimizerRun::Outcome OptimizerRun::Resume(SpectralEngine& engine, bool engine_h
     engine.SetTolerance(EffectiveEngineTolerance(options, problem.n));
     engine.SetFrequencies(s.k);
     s.sw = std::make_unique<SlicedWasserstein>(problem.n, dirs);
-    s.first_lr = options.learning_rate > 0.0 ? options.learning_rate : DefaultLearningRate(s.k);
+    s.first_lr = options.learning_rate > 0.0 ? options.learning_rate
+                                             : options.learning_rate_scale * DefaultLearningRate(s.k);
     s.lr = s.first_lr;
     s.sw_weight = EffectiveSwWeight(options, problem.n);
     s.max_iterations =

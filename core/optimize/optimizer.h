@@ -47,8 +47,10 @@ enum class DivergenceSignal {
 struct OptimizerOptions {
   // The iteration budget; 0 selects DefaultIterationBudget(N).
   int max_iterations = 0;
-  // First Adam step size. 0 picks DefaultLearningRate() from K.
+  // First Adam step size. 0 picks learning_rate_scale * DefaultLearningRate()
+  // from K.
   double learning_rate = 0.0;
+  double learning_rate_scale = 1.0;
   // Total loss L = L_Spec + c * L_SW with c = sw_weight; 0 selects c = 4N.
   //
   // The supplement's c = 10 belongs to its own normalization of L_SW, which
@@ -135,6 +137,21 @@ struct OptimizerOptions {
   // sets' after a few steps; with 0.5 they match within 1-2% (N = 4096,
   // 12 seeds, chains of 1 and 3 steps).
   double warm_warmup_fraction = 0.5;
+  // The first step of a two-direction warm descent, as a multiple of the
+  // default (learning_rate_scale). With the cold descent's first step, one
+  // warm step cost the centred Gaussian 1.33x and the unshifted random
+  // Gaussians 1.87x against the cold set (N = 4096, (12, 80) from (11, 80),
+  // 36 seeds), and half that step cost more (2.70x): the short descent did
+  // not carry the set far enough from its parent to settle its lowest
+  // frequencies for the new strips. Twice the step brought both to the cold
+  // sets' (1.00x, 0.90x, 24 seeds) and every edge within 5%; docs/results.md,
+  // "Filling the space". One-direction warm descents keep the cold step
+  // (their chains met the 5% there). Only up to
+  // warm_pair_learning_rate_max_points: above 4096 twice the step was not
+  // measured for two directions, and at 65536 it made one-direction warm
+  // sets worse (the aligned edge 1.21x, bench/results/lineage_warmup_large_n.md).
+  double warm_pair_learning_rate_scale = 2.0;
+  uint32_t warm_pair_learning_rate_max_points = 4096;
   // The largest N whose warm descents run that warm-up share; above it the
   // whole warm budget runs the main weighting (algorithm version 8). At
   // N = 65536 the warm-up half let the lowest frequencies drift (the power
@@ -184,7 +201,9 @@ int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 // The options of a descent that continues from a neighbouring key's set:
 // `cold`'s budget times warm_budget_fraction (at least one iteration), of
 // which warm_warmup_fraction with the warm-up weighting (none above
-// warm_warmup_max_points), the rest as in `cold`. The start is converged
+// warm_warmup_max_points), for two directions up to
+// warm_pair_learning_rate_max_points a first step warm_pair_learning_rate_scale
+// times the default, the rest as in `cold`. The start is converged
 // already, so a short descent moves the strips by the step between the keys.
 OptimizerOptions WarmStartOptions(const OptimizerOptions& cold, uint32_t n,
                                   int arbitrary_directions);

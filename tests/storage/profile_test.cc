@@ -118,12 +118,13 @@ TEST(ProfileText, CanonicalSerialization) {
   o.min_learning_rate = 1e-7;
   EXPECT_EQ(ProfileText({40.0, 3.0, 12.5}, o, 18446744073709551615ull, 1),
             "alignset-profile-v1;algorithm_version=1;seed=18446744073709551615;length=40;"
-            "width=3;radius=12.5;max_iterations=500;learning_rate=0.002;sw_weight=10;"
+            "width=3;radius=12.5;max_iterations=500;learning_rate=0.002;learning_rate_scale=1;sw_weight=10;"
             "weight_exponent=2.5;warmup_exponent=1.5;warmup_fraction=0.7;stratify_axes=1;"
             "zero_radius=3;final_margin=0.4;engine_tolerance=0;beta1=0.9;beta2=0.999;epsilon=1e-12;"
             "divergence_threshold=0.1;divergence_signal=0;revert_divisor=10;"
             "stall_iterations=200;stall_tolerance=0.001;plateau_factor=0.5;anneal_ratio=1;"
             "min_learning_rate=1e-07;warm_budget_fraction=0.13;warm_warmup_fraction=0.5;"
+            "warm_pair_learning_rate_scale=2;warm_pair_learning_rate_max_points=4096;"
             "warm_min_points=4096;warm_warmup_max_points=32768;");
 }
 

@@ -126,6 +126,42 @@ TEST(Optimizer, WarmDescentTakesItsShareOfTheBudgetAndItsWarmupOnlyUpToItsLimit)
                    everywhere.warm_warmup_fraction);
 }
 
+TEST(Optimizer, TwoDirectionWarmDescentsUpToTheirLimitTakeTheirOwnFirstStep) {
+  const OptimizerOptions cold;
+  EXPECT_DOUBLE_EQ(cold.learning_rate_scale, 1.0);
+  EXPECT_DOUBLE_EQ(WarmStartOptions(cold, 4096, 1).learning_rate_scale, 1.0);
+  const uint32_t limit = cold.warm_pair_learning_rate_max_points;
+  EXPECT_DOUBLE_EQ(WarmStartOptions(cold, limit, 2).learning_rate_scale,
+                   cold.warm_pair_learning_rate_scale);
+  EXPECT_NE(cold.warm_pair_learning_rate_scale, 1.0);
+  EXPECT_DOUBLE_EQ(WarmStartOptions(cold, limit + 1, 2).learning_rate_scale, 1.0);
+
+  // The scale multiplies the default first step and nothing else.
+  auto first_step = [](double scale) {
+    OptimizerOptions o;
+    o.max_iterations = 3;
+    o.warmup_fraction = 0.0;
+    o.learning_rate_scale = scale;
+    o.divergence_threshold = 1e300;  // no revert divides the step
+    o.progress_every = 1;
+    DirectEngine engine(1);
+    double first = -1.0;
+    auto r = Optimize(Problem(64, {20, 100}), o, engine, [&](const ProgressInfo& p) {
+      if (first < 0.0) first = p.learning_rate;
+      return true;
+    });
+    EXPECT_TRUE(r.ok()) << r.status().ToString();
+    return first;
+  };
+  const double one = first_step(1.0);
+  EXPECT_GT(one, 0.0);
+  EXPECT_NEAR(first_step(2.0), 2.0 * one, 1e-12 * one);
+  OptimizerOptions bad;
+  bad.learning_rate_scale = 0.0;
+  DirectEngine engine(1);
+  EXPECT_EQ(Optimize(Problem(64, {20}), bad, engine).status().code(), Status::Code::kInvalidArgument);
+}
+
 TEST(Optimizer, DeterministicForASeedAcrossThreadCounts) {
   OptimizerOptions o;
   o.max_iterations = 60;
