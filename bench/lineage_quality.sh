@@ -16,7 +16,8 @@
 # differences being measured (bench/results/lineage_warmup_large_n.md).
 #   bench/lineage_quality.sh [BUILD_DIR] [OUT_DIR]    (SUMMARY_ONLY=1: re-read OUT_DIR's tsv files)
 #   ANGLES=1: other angles at N = 4096 instead (one direction at 10 and 82 deg, two at 12 and 80,
-#   near the axes, where the chain from theta - 3 runs beside an axis strip), 36 seeds each;
+#   near the axes, where the chain from theta - 3 runs beside an axis strip; two at 12 and 50 and
+#   at 20 and 80, one of them near an axis), 36 seeds each (about 75 min);
 #   OUT_DIR then defaults to bench/results/lineage_quality_angles.
 #   SEEDS=S (default 12) for the N = 4096 two-direction case, SEEDS_ONE (default 36) for the
 #   one-direction one: with 12 seeds its axis edge at 0 deg (1.078, interval 0.99-1.16) could not
@@ -48,6 +49,8 @@ if [[ -z ${SUMMARY_ONLY:-} && -n ${ANGLES:-} ]]; then
   run n4096one10 "$seeds_one" --n 4096 --theta 10 --warm-root 7
   run n4096one82 "$seeds_one" --n 4096 --theta 82 --warm-root 79
   run n4096two12 "$seeds_one" --n 4096 --theta 12 --theta2 80 --warm-root 9
+  run n4096two12x50 "$seeds_one" --n 4096 --theta 12 --theta2 50 --warm-root 9
+  run n4096two20x80 "$seeds_one" --n 4096 --theta 20 --theta2 80 --warm-root 17
 elif [[ -z ${SUMMARY_ONLY:-} ]]; then
   rm -f "$out"/*.tsv
   run n4096one "$seeds_one" --n 4096 --theta 40 --warm-root 37
