@@ -141,10 +141,10 @@ struct OptimizerOptions {
   // default (learning_rate_scale). With the cold descent's first step, one
   // warm step cost the centred Gaussian 1.33x and the unshifted random
   // Gaussians 1.87x against the cold set (N = 4096, (12, 80) from (11, 80),
-  // 36 seeds), and half that step cost more (2.70x): the short descent did
-  // not carry the set far enough from its parent to settle its lowest
-  // frequencies for the new strips. Twice the step brought both to the cold
-  // sets' (1.00x, 0.90x, 24 seeds) and every edge within 5%; docs/results.md,
+  // 36 seeds); half that step cost more (2.70x), twice it brought both to
+  // the cold sets' (1.00x, 0.90x, 24 seeds) with every edge within 5%, and
+  // three times it lost again (2.64x): a narrow range, measured at N = 4096
+  // only, whose cause was not isolated; docs/results.md,
   // "Filling the space". One-direction warm descents keep the cold step
   // (their chains met the 5% there). Only up to
   // warm_pair_learning_rate_max_points: above 4096 twice the step was not
