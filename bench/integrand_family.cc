@@ -401,6 +401,18 @@ FrequencyParams Params(const Options& o, uint32_t n) {
   return {fp.length * o.kl, fp.width * o.kw, fp.radius * o.kr};
 }
 
+// The options of one warm step: the profile's WarmStartOptions with the
+// --warm-* overrides.
+OptimizerOptions WarmDescentOptions(const Options& o, uint32_t n) {
+  OptimizerOptions opt = WarmStartOptions(o.opt, n, std::isnan(o.theta2) ? 1 : 2);
+  if (o.warm_iterations > 0) opt.max_iterations = o.warm_iterations;
+  if (o.warm_warmup >= 0) opt.warmup_fraction = o.warm_warmup;
+  opt.anneal_ratio = o.warm_anneal;
+  if (o.warm_zero >= 0) opt.zero_radius = o.warm_zero;
+  if (o.warm_lr_scale > 0.0) opt.learning_rate_scale = o.warm_lr_scale;
+  return opt;
+}
+
 std::string Key(const Options& o, uint32_t n, double theta, int seed) {
   std::ostringstream s;
   s.precision(17);
@@ -421,11 +433,8 @@ std::string Key(const Options& o, uint32_t n, double theta, int seed) {
     if (o.warm_step != 1.0) s << ";warmstep=" << o.warm_step;
     // The effective first-step scale, so that the sets cached before the
     // profile's two-direction scale existed keep their keys.
-    const double lr_scale =
-        o.warm_lr_scale > 0.0
-            ? o.warm_lr_scale
-            : WarmStartOptions(o.opt, n, std::isnan(o.theta2) ? 1 : 2).learning_rate_scale;
-    s << ";warm=" << o.warm_root << "," << o.warm_iterations << "," << lr_scale << ","
+    s << ";warm=" << o.warm_root << "," << o.warm_iterations << ","
+      << WarmDescentOptions(o, n).learning_rate_scale << ","
       << o.warm_warmup << "," << o.warm_anneal << "," << o.opt.warm_budget_fraction << ","
       << o.opt.warm_warmup_fraction;
     if (o.warm_zero >= 0) s << ",z" << o.warm_zero;
@@ -521,12 +530,7 @@ PointSet AlignedSet(const Options& o, uint32_t n, double theta, int seed, double
                             : distance - o.warm_step * std::ceil(distance / o.warm_step - 1.0);
     const double step = theta > o.warm_root ? size : -size;
     problem.start = AlignedSet(o, n, theta - step, seed, &parent_seconds);
-    opt = WarmStartOptions(o.opt, n, static_cast<int>(problem.directions.size()));
-    if (o.warm_iterations > 0) opt.max_iterations = o.warm_iterations;
-    if (o.warm_warmup >= 0) opt.warmup_fraction = o.warm_warmup;
-    opt.anneal_ratio = o.warm_anneal;
-    if (o.warm_zero >= 0) opt.zero_radius = o.warm_zero;
-    if (o.warm_lr_scale > 0.0) opt.learning_rate_scale = o.warm_lr_scale;
+    opt = WarmDescentOptions(o, n);
   }
   if (o.construction == "net-start") {
     auto start = AlignedNet(n, problem.directions, static_cast<uint64_t>(seed), o.net);

@@ -44,15 +44,14 @@ run() {  # tag seeds args...   (SHIFT_SEEDS="A B ...": evaluate each set once pe
     done
   done
 }
+[[ -z ${SUMMARY_ONLY:-} ]] && rm -f "$out"/*.tsv
 if [[ -z ${SUMMARY_ONLY:-} && -n ${ANGLES:-} ]]; then
-  rm -f "$out"/*.tsv
   run n4096one10 "$seeds_one" --n 4096 --theta 10 --warm-root 7
   run n4096one82 "$seeds_one" --n 4096 --theta 82 --warm-root 79
   run n4096two12 "$seeds_one" --n 4096 --theta 12 --theta2 80 --warm-root 9
   run n4096two12x50 "$seeds_one" --n 4096 --theta 12 --theta2 50 --warm-root 9
   run n4096two20x80 "$seeds_one" --n 4096 --theta 20 --theta2 80 --warm-root 17
 elif [[ -z ${SUMMARY_ONLY:-} ]]; then
-  rm -f "$out"/*.tsv
   run n4096one "$seeds_one" --n 4096 --theta 40 --warm-root 37
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
   run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
