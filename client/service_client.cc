@@ -2,7 +2,9 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -184,17 +186,73 @@ struct ServiceClient::Impl {
   std::unique_ptr<v1::AlignSet::Stub> stub;
   std::unique_ptr<grpc::health::v1::Health::Stub> health;
 
-  // The token, and the deadline: the call's own, else (unary calls only)
-  // the connection's default.
-  void Prepare(grpc::ClientContext* ctx, bool unary, const CallOptions& call) const {
-    if (!options.token.empty()) ctx->AddMetadata("authorization", "Bearer " + options.token);
+  using Clock = std::chrono::system_clock;
+  struct Deadlines {
+    std::optional<Clock::time_point> call;  // none: the call may take as long as it takes
+    Clock::time_point connect;              // how long to wait for a connection
+  };
+  // The call's deadline: its own, else (unary calls only) the connection's
+  // default; the connection wait ends at the connect timeout or there.
+  Deadlines DeadlinesFrom(Clock::time_point start, bool unary, const CallOptions& call) const {
     const double timeout = call.timeout_seconds ? *call.timeout_seconds
                            : unary              ? options.timeout_seconds
                                                 : 0.0;
+    Deadlines d;
+    d.connect = start + Seconds(options.connect_timeout_seconds);
     if (timeout > 0) {
-      ctx->set_deadline(std::chrono::system_clock::now() +
-                        std::chrono::microseconds(static_cast<int64_t>(timeout * 1e6)));
+      d.call = start + Seconds(timeout);
+      d.connect = std::min(d.connect, *d.call);
     }
+    return d;
+  }
+  static Clock::duration Seconds(double s) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
+  }
+  void Prepare(grpc::ClientContext* ctx, const Deadlines& d) const {
+    if (!options.token.empty()) ctx->AddMetadata("authorization", "Bearer " + options.token);
+    if (d.call) ctx->set_deadline(*d.call);
+  }
+  // A streaming call: the token and the deadline, once connected (or once
+  // the connection wait is over).
+  void Prepare(grpc::ClientContext* ctx, const CallOptions& call) const {
+    const Deadlines d = DeadlinesFrom(Clock::now(), false, call);
+    Prepare(ctx, d);
+    AwaitConnection(d.connect);
+  }
+  // A unary call; `rpc(ctx)` sends it once. gRPC puts a channel whose
+  // connection attempt failed into reconnect backoff and fails the RPCs sent
+  // meanwhile at once, its own retries with them: a server that restarted,
+  // or whose accept backlog was full, was an error although it answered a
+  // moment later. So a call first waits for the connection, and one that
+  // failed because the connection did (UNAVAILABLE and the channel no longer
+  // ready) goes out again once it is back, until the connect timeout. An
+  // UNAVAILABLE the server itself sent (the channel still ready) is final.
+  template <class Rpc>
+  grpc::Status Unary(const CallOptions& call, Rpc&& rpc) const {
+    const Deadlines d = DeadlinesFrom(Clock::now(), true, call);
+    for (;;) {
+      grpc::ClientContext ctx;
+      Prepare(&ctx, d);
+      AwaitConnection(d.connect);
+      grpc::Status s = rpc(&ctx);
+      if (s.error_code() != grpc::StatusCode::UNAVAILABLE || Clock::now() >= d.connect ||
+          channel->GetState(/*try_to_connect=*/false) == GRPC_CHANNEL_READY ||
+          !AwaitConnection(d.connect)) {
+        return s;
+      }
+    }
+  }
+  // Waits until `by` for the channel to be connected; whether it is. Past
+  // `by` the call goes out anyway, so that its failure is gRPC's own, with
+  // the last connection error in it.
+  bool AwaitConnection(Clock::time_point by) const {
+    if (options.connect_timeout_seconds <= 0) return false;
+    grpc_connectivity_state state = channel->GetState(/*try_to_connect=*/true);
+    while (state != GRPC_CHANNEL_READY) {
+      if (state == GRPC_CHANNEL_SHUTDOWN || !channel->WaitForStateChange(state, by)) return false;
+      state = channel->GetState(/*try_to_connect=*/true);
+    }
+    return true;
   }
   Status Fail(const grpc::Status& s) const { return FromGrpc(s, options.address); }
   StatusOr<std::vector<BatchItem>> Batch(const v1::AlignedSetsRequest& req,
@@ -206,6 +264,9 @@ ServiceClient::~ServiceClient() = default;
 
 StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOptions& options) {
   if (options.address.empty()) return Status::InvalidArgument("empty server address");
+  if (!(std::isfinite(options.connect_timeout_seconds) && options.connect_timeout_seconds >= 0)) {
+    return Status::InvalidArgument("connect timeout must be a finite number of seconds >= 0");
+  }
   std::shared_ptr<grpc::ChannelCredentials> creds = grpc::InsecureChannelCredentials();
   if (!options.tls_ca_file.empty()) {
     std::ifstream in(options.tls_ca_file, std::ios::binary);
@@ -226,6 +287,12 @@ StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOpt
   // computation the server de-duplicates), and the bound keeps a server that
   // is really down a quick, clear error (about 0.7 s).
   args.SetServiceConfigJSON(kRetryServiceConfig);
+  // Reconnect soon after a failed attempt (gRPC's default waits a second
+  // first), so a call waiting for the connection sees the server as soon as
+  // it listens again.
+  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
+  args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, 100);
+  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 1000);
   auto impl = std::make_unique<Impl>();
   impl->options = options;
   impl->channel = grpc::CreateCustomChannel(options.address, creds, args);
@@ -294,10 +361,10 @@ StatusOr<AlignedSet> ServiceClient::GetAlignedSet(uint32_t n, const std::vector<
 
 StatusOr<AlignedSet> ServiceClient::GetAlignedSet(const SetRequest& request,
                                                   const CallOptions& call) {
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   v1::AlignedSetResponse resp;
-  grpc::Status s = impl_->stub->GetAlignedSet(&ctx, MakeRequest(request), &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->stub->GetAlignedSet(ctx, MakeRequest(request), &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   auto set = FromResponse(&resp);
   if (set.ok()) {
@@ -317,10 +384,10 @@ Status ItemStatus(const v1::AlignedSetsItem& item, const std::string& address) {
 
 StatusOr<std::vector<BatchItem>> ServiceClient::Impl::Batch(const v1::AlignedSetsRequest& req,
                                                             const CallOptions& call) const {
-  grpc::ClientContext ctx;
-  Prepare(&ctx, true, call);
   v1::AlignedSetsResponse resp;
-  grpc::Status s = stub->GetAlignedSets(&ctx, req, &resp);
+  grpc::Status s = Unary(call, [&](grpc::ClientContext* ctx) {
+    return stub->GetAlignedSets(ctx, req, &resp);
+  });
   if (!s.ok()) return Fail(s);
   std::vector<BatchItem> out(static_cast<size_t>(resp.items_size()));
   for (int i = 0; i < resp.items_size(); ++i) {
@@ -388,7 +455,7 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     const SetRequest& request, const std::function<void(const WatchUpdate&)>& on_update,
     const CallOptions& call) {
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false, call);
+  impl_->Prepare(&ctx, call);
   auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(request));
   v1::WatchEvent ev;
   std::optional<StatusOr<AlignedSet>> result;
@@ -447,7 +514,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_steps_per_degree(spec.steps_per_degree);
   req.set_construction(spec.construction);
   grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, false, call);
+  impl_->Prepare(&ctx, call);
   auto reader = impl_->stub->Precompute(&ctx, req);
   v1::PrecomputeProgress p;
   PrecomputeUpdate last;
@@ -468,19 +535,19 @@ StatusOr<PointSet> ServiceClient::GetSamples(const std::string& sampler, uint32_
   req.set_n(n);
   req.set_seed(seed);
   if (shear_deg) req.set_shear_deg(*shear_deg);
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   v1::SamplesResponse resp;
-  grpc::Status s = impl_->stub->GetSamples(&ctx, req, &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->stub->GetSamples(ctx, req, &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   return DecodePoints(resp.points(), resp.n());
 }
 
 StatusOr<CacheInfo> ServiceClient::GetCacheStats(const CallOptions& call) {
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   v1::CacheStatsResponse resp;
-  grpc::Status s = impl_->stub->GetCacheStats(&ctx, v1::CacheStatsRequest(), &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->stub->GetCacheStats(ctx, v1::CacheStatsRequest(), &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   CacheInfo c;
   c.sets = resp.sets();
@@ -495,10 +562,10 @@ StatusOr<CacheInfo> ServiceClient::GetCacheStats(const CallOptions& call) {
 }
 
 StatusOr<ServiceMetrics> ServiceClient::GetMetrics(const CallOptions& call) {
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   v1::MetricsResponse resp;
-  grpc::Status s = impl_->stub->GetMetrics(&ctx, v1::MetricsRequest(), &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->stub->GetMetrics(ctx, v1::MetricsRequest(), &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   return ToMetrics(resp);
 }
@@ -510,10 +577,10 @@ StatusOr<std::vector<CachedKey>> ServiceClient::ListCachedSets(uint32_t n, const
   req.set_n(n);
   req.set_profile(profile);
   req.set_limit(limit);
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   v1::ListCachedSetsResponse resp;
-  grpc::Status s = impl_->stub->ListCachedSets(&ctx, req, &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->stub->ListCachedSets(ctx, req, &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   std::vector<CachedKey> out;
   for (const auto& k : resp.keys()) {
@@ -527,10 +594,10 @@ namespace {
 
 StatusOr<DirectionReply> CallEstimate(ServiceClient::Impl* impl, const CallOptions& call,
                                       const v1::EstimateDirectionRequest& req) {
-  grpc::ClientContext ctx;
-  impl->Prepare(&ctx, true, call);
   v1::EstimateDirectionResponse resp;
-  grpc::Status s = impl->stub->EstimateDirection(&ctx, req, &resp);
+  grpc::Status s = impl->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl->stub->EstimateDirection(ctx, req, &resp);
+  });
   if (!s.ok()) return impl->Fail(s);
   DirectionReply r;
   r.first = ToDirection(resp.first());
@@ -569,11 +636,11 @@ StatusOr<DirectionReply> ServiceClient::EstimateDirection(const PointSet& points
 }
 
 StatusOr<bool> ServiceClient::Healthy(const CallOptions& call) {
-  grpc::ClientContext ctx;
-  impl_->Prepare(&ctx, true, call);
   grpc::health::v1::HealthCheckRequest req;
   grpc::health::v1::HealthCheckResponse resp;
-  grpc::Status s = impl_->health->Check(&ctx, req, &resp);
+  grpc::Status s = impl_->Unary(call, [&](grpc::ClientContext* ctx) {
+    return impl_->health->Check(ctx, req, &resp);
+  });
   if (!s.ok()) return impl_->Fail(s);
   return resp.status() == grpc::health::v1::HealthCheckResponse::SERVING;
 }

@@ -21,6 +21,12 @@ void AddServiceOptions(CLI::App* command, ServiceOptions* o) {
   command->add_option("--timeout", o->timeout_seconds, "deadline of each unary call in seconds (0: none)")
       ->check(FiniteIn(0, 1e9))
       ->group(group);
+  command->add_option("--connect-timeout", o->connect_timeout_seconds,
+                      "how long a call waits for the server to accept the connection "
+                      "(a restart, a full backlog) before it fails")
+      ->check(FiniteIn(0, 1e9))
+      ->capture_default_str()
+      ->group(group);
 }
 
 StatusOr<ConnectOptions> ResolveConnectOptions(const ServiceOptions& options) {
@@ -29,6 +35,7 @@ StatusOr<ConnectOptions> ResolveConnectOptions(const ServiceOptions& options) {
   o.tls_ca_file = options.tls_ca;
   o.tls_server_name = options.tls_server_name;
   o.timeout_seconds = options.timeout_seconds;
+  o.connect_timeout_seconds = options.connect_timeout_seconds;
   if (!options.token_file.empty()) {
     std::ifstream in(options.token_file);
     if (!in) return Status::InvalidArgument("cannot read --token-file " + options.token_file);

@@ -15,12 +15,14 @@ namespace alignset::cli {
 //   --token-file FILE   send its first line as the bearer token
 //                       (default $ALIGNSET_TOKEN_FILE)
 //   --timeout SECONDS   deadline of each unary call (default: none)
+//   --connect-timeout S how long a call waits for the connection (default 2)
 struct ServiceOptions {
   std::string server = kDefaultServerAddress;
   std::string tls_ca;
   std::string tls_server_name;
   std::string token_file;
   double timeout_seconds = 0.0;
+  double connect_timeout_seconds = ConnectOptions{}.connect_timeout_seconds;
 };
 
 void AddServiceOptions(CLI::App* command, ServiceOptions* options);

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include "alignset/v1/alignset.grpc.pb.h"
@@ -148,6 +149,49 @@ TEST_F(E2eTest, ThirtyTwoConcurrentRequestsRunExactlyOneOptimization) {
   EXPECT_EQ(m.optimizations_completed, 1u);
   EXPECT_EQ(m.cache_misses + m.cache_hits_memory + m.cache_hits_db, static_cast<uint64_t>(kClients));
   EXPECT_GT(m.shared_waits, 0u);  // they did overlap
+}
+
+TEST_F(E2eTest, ACallSentWhileTheServerRestartsWaitsForItAndIsServed) {
+  // A connected client, even idle, holds up a SIGTERM'd server for up to its grace.
+  StartServer(With(kFast, {"--shutdown-grace", "1"}));
+  ConnectOptions o;
+  o.connect_timeout_seconds = 20;  // a loaded machine may take seconds to restart it
+  auto client = Client(o);
+  auto first = client->GetAlignedSet(64, {30.0});
+  ASSERT_TRUE(first.ok()) << first.status().message();
+  const std::string port = std::to_string(server_->port());
+  server_->Stop(SIGTERM);
+  server_.reset();
+  // The server is down when the call goes out and listens on the same port
+  // (same database) a moment later: before the connection wait, the call
+  // failed UNAVAILABLE within its 0.7 s of retries.
+  std::unique_ptr<ServerProcess> restarted;
+  std::thread restart([&] {
+    std::this_thread::sleep_for(700ms);
+    restarted = std::make_unique<ServerProcess>(dir_.path(), With(kFast, {"--listen", "127.0.0.1:" + port}));
+  });
+  const auto sent = std::chrono::steady_clock::now();
+  auto again = client->GetAlignedSet(64, {30.0});
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  restart.join();
+  server_ = std::move(restarted);
+  ASSERT_EQ(server_->error(), "");
+  ASSERT_TRUE(again.ok()) << again.status().message();
+  EXPECT_GE(waited, 0.7);  // it was answered by the restarted server
+  EXPECT_TRUE(again->info.from_cache);  // from the database the first server wrote
+  EXPECT_EQ(again->raw, first->raw);
+}
+
+TEST_F(E2eTest, ANegativeOrNonFiniteConnectTimeoutIsRefused) {
+  for (double t : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    ConnectOptions o;
+    o.address = "127.0.0.1:1";
+    o.connect_timeout_seconds = t;
+    auto c = ServiceClient::Connect(o);
+    ASSERT_FALSE(c.ok()) << t;
+    EXPECT_EQ(c.status().code(), Status::Code::kInvalidArgument);
+    EXPECT_NE(c.status().message().find("connect timeout"), std::string::npos);
+  }
 }
 
 void ExpectStatus(const grpc::Status& s, grpc::StatusCode code, const std::string& fragment) {

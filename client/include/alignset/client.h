@@ -39,6 +39,12 @@ struct ConnectOptions {
   // per call); 0: none (GetAlignedSet then waits for as long as the
   // optimization takes).
   double timeout_seconds = 0.0;
+  // How long a call waits for a connection to the server (reconnecting
+  // every 0.1 to 1 s), and a unary call that failed because its connection
+  // did is sent again once the server is back: rides out a server restart
+  // or a full accept backlog. Past it the call fails UNAVAILABLE. Bounded by
+  // the call's own deadline; 0: no wait (gRPC's few quick retries only).
+  double connect_timeout_seconds = 2.0;
   // A connection of its own instead of one shared with other clients of the
   // process (load tests).
   bool separate_connection = false;
