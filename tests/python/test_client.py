@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+import threading
 import time
 import unittest
 
@@ -25,25 +26,32 @@ def read(path):
         return f.read()
 
 
+def start_server(directory, listen="127.0.0.1:0", extra=()):
+    """alignset-server on `listen` with its database in `directory`: (process, log, address)."""
+    port_file = os.path.join(directory, "port")
+    if os.path.exists(port_file):
+        os.remove(port_file)
+    log = open(os.path.join(directory, "server.log"), "a")
+    server = subprocess.Popen(
+        [os.environ["ALIGNSET_SERVER_BIN"], "--listen", listen, "--port-file", port_file,
+         "--db", os.path.join(directory, "cache.sqlite"), "--max-iterations", "40",
+         "--workers", "2", "--threads-per-worker", "1", "--max-n", "4096",
+         "--log-level", "warn", *extra],
+        stdout=log, stderr=log)
+    for _ in range(300):
+        if os.path.exists(port_file) and read(port_file).strip():
+            break
+        if server.poll() is not None:
+            raise RuntimeError("alignset-server exited: " + read(log.name))
+        time.sleep(0.1)
+    return server, log, "127.0.0.1:" + read(port_file).split()[0]
+
+
 class ServerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = tempfile.mkdtemp(prefix="alignset-python-")
-        port_file = os.path.join(cls.dir, "port")
-        cls.log = open(os.path.join(cls.dir, "server.log"), "w")
-        cls.server = subprocess.Popen(
-            [os.environ["ALIGNSET_SERVER_BIN"], "--listen", "127.0.0.1:0", "--port-file", port_file,
-             "--db", os.path.join(cls.dir, "cache.sqlite"), "--max-iterations", "40",
-             "--workers", "2", "--threads-per-worker", "1", "--max-n", "4096",
-             "--log-level", "warn"],
-            stdout=cls.log, stderr=cls.log)
-        for _ in range(300):
-            if os.path.exists(port_file) and read(port_file).strip():
-                break
-            if cls.server.poll() is not None:
-                raise RuntimeError("alignset-server exited: " + read(cls.log.name))
-            time.sleep(0.1)
-        cls.address = "127.0.0.1:" + read(port_file).strip()
+        cls.server, cls.log, cls.address = start_server(cls.dir)
         cls.client = alignset.Client(cls.address, timeout=60)
 
     @classmethod
@@ -188,6 +196,39 @@ class ServerTest(unittest.TestCase):
         self.assertEqual(e.exception.code, grpc.StatusCode.DEADLINE_EXCEEDED)
         # The server keeps serving.
         self.assertGreater(self.client.metrics().requests_invalid, 0)
+
+    def test_a_call_sent_while_the_server_restarts_waits_for_it(self):
+        directory = tempfile.mkdtemp(prefix="alignset-python-restart-")
+        server, log, address = start_server(directory, extra=["--shutdown-grace", "1"])
+        restarted = []
+        try:
+            with alignset.Client(address, timeout=60, connect_timeout=20) as c:
+                first = c.get(64, 30)
+                server.terminate()
+                server.wait(timeout=30)
+                # Down when the call goes out; on the same port and database 0.7 s later.
+                restart = threading.Thread(target=lambda: (
+                    time.sleep(0.7), restarted.append(start_server(directory, address))))
+                restart.start()
+                sent = time.monotonic()
+                again = c.get_set(64, 30)
+                waited = time.monotonic() - sent
+                restart.join()
+                self.assertGreaterEqual(waited, 0.7)
+                self.assertTrue(again.metadata.from_cache)
+                np.testing.assert_array_equal(again.points, first)
+        finally:
+            for p, l, _ in [(server, log, None)] + restarted:
+                if p.poll() is None:
+                    p.terminate()
+                    p.wait(timeout=30)
+                l.close()
+            shutil.rmtree(directory)
+
+    def test_a_bad_connect_timeout_is_refused(self):
+        for bad in (-1, float("nan"), float("inf"), "2"):
+            with self.assertRaises(ValueError):
+                alignset.Client(self.address, connect_timeout=bad)
 
     def test_an_unreachable_server_is_unavailable(self):
         with alignset.Client("127.0.0.1:1", timeout=5) as down:

@@ -1,6 +1,9 @@
 """The client: one gRPC channel to alignset-server, points as NumPy arrays."""
 
 import dataclasses
+import math
+import threading
+import time
 
 import grpc
 import numpy as np
@@ -74,10 +77,21 @@ class Client:
     server: "host:port" (default 127.0.0.1:50051); timeout: default deadline of
     each call in seconds (None: none; every method also takes its own);
     token: sent as "authorization: Bearer <token>"; root_certificates: PEM
-    bytes to trust, which switches to TLS."""
+    bytes to trust, which switches to TLS; connect_timeout: how long a call
+    waits for the connection, a call whose connection failed being sent again
+    once the server is back (a restart, a full accept backlog), as the C++
+    client does (0: no wait)."""
 
-    def __init__(self, server=DEFAULT_SERVER, timeout=None, token=None, root_certificates=None):
-        options = [("grpc.max_receive_message_length", -1)]
+    def __init__(self, server=DEFAULT_SERVER, timeout=None, token=None, root_certificates=None,
+                 connect_timeout=2.0):
+        if not (isinstance(connect_timeout, (int, float)) and math.isfinite(connect_timeout)
+                and connect_timeout >= 0):
+            raise ValueError("connect_timeout must be a finite number of seconds >= 0")
+        # Reconnect soon after a failed attempt (gRPC's default waits a second).
+        options = [("grpc.max_receive_message_length", -1),
+                   ("grpc.initial_reconnect_backoff_ms", 100),
+                   ("grpc.min_reconnect_backoff_ms", 100),
+                   ("grpc.max_reconnect_backoff_ms", 1000)]
         if root_certificates is not None:
             creds = grpc.ssl_channel_credentials(root_certificates=root_certificates)
             self._channel = grpc.secure_channel(server, creds, options=options)
@@ -85,9 +99,43 @@ class Client:
             self._channel = grpc.insecure_channel(server, options=options)
         self._stub = pb_grpc.AlignSetStub(self._channel)
         self._timeout = timeout
+        self._connect_timeout = connect_timeout
         self._metadata = [("authorization", "Bearer " + token)] if token else None
+        # The channel's connectivity as gRPC last reported it; subscribed with
+        # try_to_connect, the channel connects, and reconnects when it drops.
+        self._state = grpc.ChannelConnectivity.IDLE
+        self._state_changed = threading.Condition()
+        self._channel.subscribe(self._on_state, try_to_connect=True)
+
+    def _on_state(self, state):
+        with self._state_changed:
+            self._state = state
+            self._state_changed.notify_all()
+
+    def _await_connection(self, by):
+        """Waits until `by` for the connection; whether it is ready."""
+        if self._connect_timeout <= 0:
+            return False
+        with self._state_changed:
+            while self._state != grpc.ChannelConnectivity.READY:
+                left = by - time.monotonic()
+                if left <= 0:
+                    return False
+                if self._state in (grpc.ChannelConnectivity.IDLE,
+                                   grpc.ChannelConnectivity.TRANSIENT_FAILURE):
+                    # gRPC's Python channel asks for a connection once per
+                    # subscription, and an idle one does not reconnect alone.
+                    self._channel.subscribe(self._ignore_state, try_to_connect=True)
+                    self._channel.unsubscribe(self._ignore_state)
+                self._state_changed.wait(timeout=min(left, 0.2))
+            return True
+
+    @staticmethod
+    def _ignore_state(state):
+        pass
 
     def close(self):
+        self._channel.unsubscribe(self._on_state)
         self._channel.close()
 
     def __enter__(self):
@@ -97,11 +145,23 @@ class Client:
         self.close()
 
     def _call(self, method, request, timeout):
-        try:
-            return method(request, timeout=self._timeout if timeout is None else timeout,
-                          metadata=self._metadata)
-        except grpc.RpcError as e:
-            raise AlignSetError(e.code(), e.details()) from None
+        timeout = self._timeout if timeout is None else timeout
+        start = time.monotonic()
+        connect_by = start + (self._connect_timeout if timeout is None
+                              else min(self._connect_timeout, timeout))
+        self._await_connection(connect_by)
+        while True:
+            left = None if timeout is None else max(0.0, timeout - (time.monotonic() - start))
+            try:
+                return method(request, timeout=left, metadata=self._metadata)
+            except grpc.RpcError as e:
+                # Sent again only when the connection failed (the channel is
+                # not ready): an UNAVAILABLE the server sent is final.
+                with self._state_changed:
+                    connected = self._state == grpc.ChannelConnectivity.READY
+                if (e.code() != grpc.StatusCode.UNAVAILABLE or connected
+                        or time.monotonic() >= connect_by or not self._await_connection(connect_by)):
+                    raise AlignSetError(e.code(), e.details()) from None
 
     def get_set(self, n, directions, realization=0, timeout=None, construction=None):
         """The aligned set for n points and one or two directions (degrees),
