@@ -10,7 +10,8 @@
 # other seeds against the cold sets (seed s + S/2 against seed s), the ratio
 # two equally good sets show. Members evaluated without a shift swing by
 # factors between seeds; their cells say little (the null shows how little).
-# At N = 65536 each set is evaluated once per CP shift seed (SHIFT_SEEDS) and
+# At N = 65536 (one direction, 6 seeds; two directions, one seed and a second
+# cold seed for the null) each set is evaluated once per CP shift seed (SHIFT_SEEDS) and
 # the mean taken: with 64 shifts per Gaussian one evaluation of the CP
 # Gaussians moved by up to 22% under another shift seed, as much as the
 # differences being measured (bench/results/lineage_warmup_large_n.md).
@@ -57,6 +58,13 @@ elif [[ -z ${SUMMARY_ONLY:-} ]]; then
   run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
   SHIFT_SEEDS="12345 777 778 779" \
     run n65536one 6 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
+  # Two directions at 65536: one seed (about 25 min), and the cold set of seed 2 for the null.
+  large_two=(--n 65536 --theta 11 --theta2 100 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64)
+  SHIFT_SEEDS="12345 777 778 779" run n65536two 1 "${large_two[@]}"
+  for ss in 12345 777 778 779; do
+    "$fam" --cache "$cache" --seeds 1 --first-seed 2 "${large_two[@]}" --shift-seed "$ss" \
+      --out "$out/n65536two_cold_s2_x$ss.tsv" > /dev/null
+  done
 fi
 /usr/bin/python3 - "$out" <<'PY' | tee "$out.md"
 import collections, glob, math, os, random, re, sys
