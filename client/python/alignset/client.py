@@ -156,9 +156,13 @@ class Client:
                 return method(request, timeout=left, metadata=self._metadata)
             except grpc.RpcError as e:
                 # Sent again only when the connection failed (the channel is
-                # not ready): an UNAVAILABLE the server sent is final.
-                with self._state_changed:
-                    connected = self._state == grpc.ChannelConnectivity.READY
+                # not ready): an UNAVAILABLE the server sent is final. The
+                # channel's news arrives on another thread: give it a moment.
+                connected = False
+                if e.code() == grpc.StatusCode.UNAVAILABLE:
+                    with self._state_changed:
+                        connected = not self._state_changed.wait_for(
+                            lambda: self._state != grpc.ChannelConnectivity.READY, timeout=0.2)
                 if (e.code() != grpc.StatusCode.UNAVAILABLE or connected
                         or time.monotonic() >= connect_by or not self._await_connection(connect_by)):
                     raise AlignSetError(e.code(), e.details()) from None
