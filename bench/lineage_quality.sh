@@ -56,12 +56,13 @@ elif [[ -z ${SUMMARY_ONLY:-} ]]; then
   run n4096one "$seeds_one" --n 4096 --theta 40 --warm-root 37
   run n4096two "$seeds" --n 4096 --theta 40 --theta2 100 --warm-root 37
   run n16384one 2 --n 16384 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
-  SHIFT_SEEDS="12345 777 778 779" \
+  large_shift_seeds="12345 777 778 779"
+  SHIFT_SEEDS=$large_shift_seeds \
     run n65536one 6 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
   # Two directions at 65536: one seed (about 25 min), and the cold set of seed 2 for the null.
   large_two=(--n 65536 --theta 11 --theta2 100 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64)
-  SHIFT_SEEDS="12345 777 778 779" run n65536two 1 "${large_two[@]}"
-  for ss in 12345 777 778 779; do
+  SHIFT_SEEDS=$large_shift_seeds run n65536two 1 "${large_two[@]}"
+  for ss in $large_shift_seeds; do
     "$fam" --cache "$cache" --seeds 1 --first-seed 2 "${large_two[@]}" --shift-seed "$ss" \
       --out "$out/n65536two_cold_s2_x$ss.tsv" > /dev/null
   done

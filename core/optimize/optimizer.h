@@ -147,9 +147,11 @@ struct OptimizerOptions {
   // only, whose cause was not isolated; docs/results.md,
   // "Filling the space". One-direction warm descents keep the cold step
   // (their chains met the 5% there). Only up to
-  // warm_pair_learning_rate_max_points: above 4096 twice the step was not
-  // measured for two directions, and at 65536 it made one-direction warm
-  // sets worse (the aligned edge 1.21x, bench/results/lineage_warmup_large_n.md).
+  // warm_pair_learning_rate_max_points: above 4096 it was only screened for
+  // two directions (N = 65536, one seed, one evaluation: members moved 5-20%
+  // both ways, bench/results/lineage_quality_levers.md), and at 65536 it made
+  // one-direction warm sets worse (the aligned edge 1.21x,
+  // bench/results/lineage_warmup_large_n.md).
   double warm_pair_learning_rate_scale = 2.0;
   uint32_t warm_pair_learning_rate_max_points = 4096;
   // The largest N whose warm descents run that warm-up share; above it the
