@@ -10,8 +10,8 @@
 # other seeds against the cold sets (seed s + S/2 against seed s), the ratio
 # two equally good sets show. Members evaluated without a shift swing by
 # factors between seeds; their cells say little (the null shows how little).
-# At N = 65536 (one direction, 6 seeds; two directions, one seed and a second
-# cold seed for the null) each set is evaluated once per CP shift seed (SHIFT_SEEDS) and
+# At N = 65536 (one direction, 6 seeds; two directions, SEEDS_TWO_LARGE seeds, default 4:
+# with one seed the centred Gaussian's null was 0.31) each set is evaluated once per CP shift seed (SHIFT_SEEDS) and
 # the mean taken: with 64 shifts per Gaussian one evaluation of the CP
 # Gaussians moved by up to 22% under another shift seed, as much as the
 # differences being measured (bench/results/lineage_warmup_large_n.md).
@@ -23,12 +23,15 @@
 #   SEEDS=S (default 12) for the N = 4096 two-direction case, SEEDS_ONE (default 36) for the
 #   one-direction one: with 12 seeds its axis edge at 0 deg (1.078, interval 0.99-1.16) could not
 #   be told from the 5% the lineage may lose.
+#   KEEP=1: keep OUT_DIR's tsv files and evaluate only what is missing (a long run resumed, or
+#   more seeds added to one case).
 set -euo pipefail
 build=${1:-build}
 out=${2:-bench/results/lineage_quality${ANGLES:+_angles}}
 cache=${CACHE:-$build/bench-cache/lineage}
 seeds=${SEEDS:-12}
 seeds_one=${SEEDS_ONE:-36}
+seeds_two_large=${SEEDS_TWO_LARGE:-4}
 fam="$build/bench/alignset_integrand_family"
 mkdir -p "$out" "$cache"
 run() {  # tag seeds args...   (SHIFT_SEEDS="A B ...": evaluate each set once per CP shift seed)
@@ -38,14 +41,16 @@ run() {  # tag seeds args...   (SHIFT_SEEDS="A B ...": evaluate each set once pe
     for ss in ${SHIFT_SEEDS:-12345}; do
       local x=""
       [[ -n ${SHIFT_SEEDS:-} ]] && x="_x$ss"
-      "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --shift-seed "$ss" \
-        --out "$out/${tag}_cold_s$s$x.tsv" > /dev/null
-      "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --shift-seed "$ss" --construction warm \
-        --out "$out/${tag}_warm_s$s$x.tsv" > /dev/null
+      for kind in cold:optimized warm:warm; do
+        local file="$out/${tag}_${kind%%:*}_s$s$x.tsv"
+        [[ -n ${KEEP:-} && -s $file ]] && continue
+        "$fam" --cache "$cache" --seeds 1 --first-seed "$s" "$@" --shift-seed "$ss" \
+          --construction "${kind##*:}" --out "$file" > /dev/null
+      done
     done
   done
 }
-[[ -z ${SUMMARY_ONLY:-} ]] && rm -f "$out"/*.tsv
+[[ -z ${SUMMARY_ONLY:-} && -z ${KEEP:-} ]] && rm -f "$out"/*.tsv
 if [[ -z ${SUMMARY_ONLY:-} && -n ${ANGLES:-} ]]; then
   run n4096one10 "$seeds_one" --n 4096 --theta 10 --warm-root 7
   run n4096one82 "$seeds_one" --n 4096 --theta 82 --warm-root 79
@@ -59,13 +64,9 @@ elif [[ -z ${SUMMARY_ONLY:-} ]]; then
   large_shift_seeds="12345 777 778 779"
   SHIFT_SEEDS=$large_shift_seeds \
     run n65536one 6 --n 65536 --theta 11 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
-  # Two directions at 65536: one seed (about 25 min), and the cold set of seed 2 for the null.
-  large_two=(--n 65536 --theta 11 --theta2 100 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64)
-  SHIFT_SEEDS=$large_shift_seeds run n65536two 1 "${large_two[@]}"
-  for ss in $large_shift_seeds; do
-    "$fam" --cache "$cache" --seeds 1 --first-seed 2 "${large_two[@]}" --shift-seed "$ss" \
-      --out "$out/n65536two_cold_s2_x$ss.tsv" > /dev/null
-  done
+  # Two directions at 65536 (about 25 min a seed).
+  SHIFT_SEEDS=$large_shift_seeds run n65536two "$seeds_two_large" \
+    --n 65536 --theta 11 --theta2 100 --warm-root 8 --scrambles 2 --shifts 512 --gaussian-shifts 64
 fi
 /usr/bin/python3 - "$out" <<'PY' | tee "$out.md"
 import collections, glob, math, os, random, re, sys

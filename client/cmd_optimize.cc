@@ -45,7 +45,7 @@ struct OptimizeOptions {
   // core/optimize/aligned_lattice.h) or "net" (an aligned net,
   // core/optimize/aligned_net.h): the last two need no engine.
   std::string construction = "optimized";
-  double window = 1.0;
+  std::optional<double> window;  // default: 1 degree, 2 for tent-lattice
 };
 
 int Usage(const Status& s) { return ReportError("optimize", s, kExitUsage); }
@@ -79,9 +79,14 @@ int WriteConstructed(const OptimizeOptions& o, const std::vector<PointSet>& poin
 
 // --construction lattice: the generator is searched once; -m gives its
 // realizations (seeds S, S+1, ...: other whole-cell shifts of one lattice).
+// tent-lattice the same, folded (TentLatticePoints: other continuous shifts
+// before the fold).
 int RunLattice(const OptimizeOptions& o) {
+  const bool folded = o.construction == "tent-lattice";
+  const double window = o.window.value_or(folded ? kTentLatticeWindowDeg : 1.0);
   AlignedLatticeOptions lattice;
-  lattice.window_deg = o.window;
+  lattice.folded = folded;
+  lattice.window_deg = window;
   lattice.threads = static_cast<int>(o.threads);
   const uint32_t n = static_cast<uint32_t>(o.n);
   if (!IsStdStream(o.out)) {
@@ -99,19 +104,22 @@ int RunLattice(const OptimizeOptions& o) {
   std::vector<PointSet> points;
   std::string comment;
   for (int i = 0; i < sets; ++i) {
-    points.push_back(Rank1LatticePoints(n, choice->generator, o.seed + static_cast<uint64_t>(i)));
+    const uint64_t seed = o.seed + static_cast<uint64_t>(i);
+    points.push_back(folded ? TentLatticePoints(n, choice->generator, seed)
+                            : Rank1LatticePoints(n, choice->generator, seed));
     char line[256];
     std::snprintf(line, sizeof(line),
-                  "%salignset aligned lattice%s: N=%u directions(deg, edge normal)=%s "
+                  "%salignset aligned %slattice%s: N=%u directions(deg, edge normal)=%s "
                   "generator=%u window=%g seed=%llu",
-                  i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", n,
-                  dir_text.c_str(), choice->generator, o.window,
+                  i ? "\n" : "", folded ? "tent-folded " : "",
+                  sets > 1 ? (" " + std::to_string(i)).c_str() : "", n,
+                  dir_text.c_str(), choice->generator, window,
                   static_cast<unsigned long long>(o.seed + i));
     comment += line;
   }
   char what[160];
-  std::snprintf(what, sizeof(what), "aligned rank-1 lattice, generator %u (%u candidates, window +-%g deg)",
-                choice->generator, choice->candidates, o.window);
+  std::snprintf(what, sizeof(what), "aligned %srank-1 lattice, generator %u (%u candidates, window +-%g deg)",
+                folded ? "tent-folded " : "", choice->generator, choice->candidates, window);
   return WriteConstructed(o, points, comment, dir_text, what, seconds);
 }
 
@@ -119,7 +127,8 @@ int RunLattice(const OptimizeOptions& o) {
 // each its own flip search.
 int RunNet(const OptimizeOptions& o) {
   AlignedNetOptions net;
-  net.window_deg = o.window;
+  const double window = o.window.value_or(1.0);
+  net.window_deg = window;
   const uint32_t n = static_cast<uint32_t>(o.n);
   if (!IsStdStream(o.out)) {
     if (Status s = WritePointFile(o.out, {}, "alignset: construction in progress"); !s.ok()) {
@@ -141,12 +150,12 @@ int RunNet(const OptimizeOptions& o) {
     std::snprintf(line, sizeof(line),
                   "%salignset aligned net%s: N=%u directions(deg, edge normal)=%s window=%g seed=%llu",
                   i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", n, dir_text.c_str(),
-                  o.window, static_cast<unsigned long long>(o.seed + i));
+                  window, static_cast<unsigned long long>(o.seed + i));
     comment += line;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   char what[160];
-  std::snprintf(what, sizeof(what), "aligned (0,m,2)-net, %d flips chosen (window +-%g deg)", flips, o.window);
+  std::snprintf(what, sizeof(what), "aligned (0,m,2)-net, %d flips chosen (window +-%g deg)", flips, window);
   return WriteConstructed(o, points, comment, dir_text, what, seconds);
 }
 
@@ -170,7 +179,7 @@ int RunOptimize(const OptimizeOptions& o) {
       }
     }
   }
-  if (o.construction == "lattice") return RunLattice(o);
+  if (o.construction == "lattice" || o.construction == "tent-lattice") return RunLattice(o);
   if (o.construction == "net") return RunNet(o);
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
@@ -310,13 +319,15 @@ void AddOptimizeCommand(CLI::App& app) {
   c->add_option("--construction", o->construction,
                 "optimized (gradient descent from Owen-scrambled Sobol), lattice (an aligned\n"
                 "rank-1 lattice: its generator chosen by the exact variance of step edges\n"
-                "within --window degrees of each direction) or net (an aligned (0,m,2)-net:\n"
-                "its scrambling chosen for those edges; N a power of two)")
+                "within --window degrees of each direction), tent-lattice (the same lattice\n"
+                "folded by the tent 1 - |2u - 1| after its shift, its generator chosen for the\n"
+                "folded edges: no loss on smooth functions that are not periodic) or net (an\n"
+                "aligned (0,m,2)-net: its scrambling chosen for those edges; N a power of two)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
   c->add_option("--window", o->window,
-                "lattice: the half-width in degrees of the window of edge directions scored")
-      ->capture_default_str()
+                "lattice, tent-lattice, net: the half-width in degrees of the window of edge\n"
+                "directions scored (default 1; tent-lattice 2)")
       ->check(FiniteIn(0.0, 10.0));
   c->add_option("--engine", o->engine, "spectral engine: auto, direct, fast or cuda")
       ->capture_default_str();

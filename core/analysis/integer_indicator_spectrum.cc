@@ -88,7 +88,7 @@ IntegerIndicatorSpectrum::Complex IntegerIndicatorSpectrum::Exponential(const Ve
   return {re, im};
 }
 
-double IntegerIndicatorSpectrum::Energy(int hx, int hy) const {
+std::complex<double> IntegerIndicatorSpectrum::Sum(int hx, int hy) const {
   // Every vertex's factor once: a polygon has a handful (the constructor
   // keeps at most kMaxVertices).
   double fr[kMaxVertices], fi[kMaxVertices];
@@ -125,7 +125,22 @@ double IntegerIndicatorSpectrum::Energy(int hx, int hy) const {
     }
     sr += tr, si += ti;
   }
-  const double h2 = fx * fx + fy * fy;
+  return {sr, si};
+}
+
+double IntegerIndicatorSpectrum::Energy(int hx, int hy) const {
+  const Complex s = Sum(hx, hy);
+  const double h2 = static_cast<double>(hx) * hx + static_cast<double>(hy) * hy;
+  return (s.real() * s.real() + s.imag() * s.imag()) / (4.0 * kPi * kPi * h2 * h2);
+}
+
+double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, int hx, int hy) {
+  double sr = 0.0, si = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const std::complex<double> s = parts[i]->Sum(hx, hy);
+    sr += s.real(), si += s.imag();
+  }
+  const double h2 = static_cast<double>(hx) * hx + static_cast<double>(hy) * hy;
   return (sr * sr + si * si) / (4.0 * kPi * kPi * h2 * h2);
 }
 

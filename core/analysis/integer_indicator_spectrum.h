@@ -18,6 +18,8 @@ namespace alignset {
 // For integer h a vertex on the unit square's sides has a trivial factor
 // (exp(-2 pi i k) = 1 for x or y in {0, 1}), so a square clipped by a
 // half-plane (the scored edges) needs two small one-dimensional tables.
+// Vertices off the sides (a polygon scaled into a quadrant of the square, as
+// the tent-folded edges are) have tables of their own.
 // Where h . e is near zero the difference cancels; there the factor is
 // E(a) (1 - exp(-2 pi i u)) / (2 pi i u) by its Taylor series.
 class IntegerIndicatorSpectrum {
@@ -34,6 +36,11 @@ class IntegerIndicatorSpectrum {
   bool Valid() const { return !vertices_.empty(); }
   // h != 0.
   double Energy(int hx, int hy) const;
+  // The coefficient times 2 pi |h|^2 and a phase that depends on h alone, the
+  // same for every polygon: the coefficients of a union of disjoint polygons
+  // add, so its energy is |sum of their Sums|^2 / (4 pi^2 |h|^4)
+  // (FoldedEnergy). h != 0.
+  std::complex<double> Sum(int hx, int hy) const;
   // The bytes its tables hold.
   size_t TableBytes() const;
 
@@ -54,5 +61,9 @@ class IntegerIndicatorSpectrum {
   std::vector<Vertex> vertices_;
   std::vector<Edge> edges_;
 };
+
+// The energy |f^(h)|^2 of the indicator of a union of polygons with
+// disjoint interiors, each given by its spectrum. h != 0.
+double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, int hx, int hy);
 
 }  // namespace alignset

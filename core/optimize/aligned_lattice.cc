@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "core/analysis/convex_polygon.h"
+#include "core/analysis/folded_indicator_spectrum.h"
 #include "core/analysis/integer_indicator_spectrum.h"
 #include "core/analysis/lattice_variance.h"
 #include "core/optimize/lattice_term_cache.h"
@@ -29,9 +30,23 @@ namespace {
 // Offsets of the scored edges from the centre, along their normal: one
 // through the centre and two that cut the square unevenly.
 constexpr double kEdgeOffsets[] = {0.0, 0.21, -0.33};
+// A folded lattice's variance swings by up to 10x between offsets a tenth
+// apart (the four folded copies of the edge move against each other), so it
+// scores six, all of them in both stages. Positive only: the point
+// reflection about the centre takes an edge at -o to the complement of the
+// edge at o, which a folded set integrates with the same error; and not 0,
+// which every folded rank-1 lattice with N even integrates exactly (the
+// coefficients with h_x + h_y even vanish there, and so does every dual
+// point's parity).
+constexpr double kFoldedEdgeOffsets[] = {0.03, 0.08, 0.13, 0.19, 0.26, 0.33};
+size_t CoarseOffsets(bool folded) { return folded ? std::size(kFoldedEdgeOffsets) : 2; }
+size_t FullOffsets(bool folded) { return folded ? std::size(kFoldedEdgeOffsets) : std::size(kEdgeOffsets); }
 constexpr double kCornerWeight = 0.5;
-// The window is sampled at 2 kWindowSteps + 1 angles.
+// The window is sampled at 2 kWindowSteps + 1 angles; a folded lattice's at
+// twice as many (its resonances are narrower than a quarter of its default
+// window).
 constexpr int kWindowSteps = 4;
+int WindowSteps(bool folded) { return folded ? 2 * kWindowSteps : kWindowSteps; }
 constexpr uint32_t kFullSearchLimit = 65536;
 // A family's coefficient tables may take this much memory (a two-direction
 // family at N = 32768 takes 56 MB); above it the vertices' factors are
@@ -39,16 +54,21 @@ constexpr uint32_t kFullSearchLimit = 65536;
 constexpr double kMaxTableBytes = 64e6;
 
 struct Family {
-  std::vector<IntegerIndicatorSpectrum> edges;
+  // Each scored edge is `parts` consecutive spectra: 1, or the 4 quadrant
+  // images of a folded edge, whose coefficients add.
+  std::vector<IntegerIndicatorSpectrum> spectra;
+  size_t parts = 1;
   std::vector<size_t> ends;  // direction i's edges are [ends[i - 1], ends[i])
+  size_t Edges() const { return spectra.size() / parts; }
 };
 
 // The edges scored: for each direction, 2 steps + 1 normals across the
-// window, each through `offsets` of the kEdgeOffsets; the polygons alone
+// window, each through `offsets` of the kEdgeOffsets (kFoldedEdgeOffsets);
+// the polygons alone
 // (a key's score divides by their count, which a cached search needs without
 // the tables).
 std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& directions_deg,
-                                                 double window_deg, int steps, size_t offsets) {
+                                                 double window_deg, int steps, size_t offsets, bool folded) {
   std::vector<std::vector<Polygon>> out;
   for (double d : directions_deg) {
     std::vector<Polygon>& polygons = out.emplace_back();
@@ -56,7 +76,7 @@ std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& dire
       const double delta = window_deg * k / steps;
       const Vec2 n = UnitVector(d + delta);
       for (size_t o = 0; o < offsets; ++o) {
-        const double offset = kEdgeOffsets[o];
+        const double offset = folded ? kFoldedEdgeOffsets[o] : kEdgeOffsets[o];
         const double c = 0.5 * (n.x + n.y) + offset;
         Polygon p = ClipHalfPlane(UnitSquarePolygon(), n, c);
         if (SignedArea(p) > 1e-12) polygons.push_back(std::move(p));
@@ -69,17 +89,33 @@ std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& dire
 // The same edges with their coefficients tabulated for the dual points
 // within `radius`.
 Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg, int steps,
-                    size_t offsets, int radius) {
-  // Each edge's square has two vertices off the corners, one table each.
-  const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets * 2.0 *
-                       (2.0 * radius + 1.0) * sizeof(std::complex<double>);
+                    size_t offsets, int radius, bool folded) {
+  const size_t parts = folded ? 4 : 1;
+  // Each edge's square has two vertices off the corners, one table each (a
+  // folded edge's images up to five each).
+  const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets *
+                       (folded ? 20.0 : 2.0) * (2.0 * radius + 1.0) * sizeof(std::complex<double>);
   const bool tabulate = bytes <= kMaxTableBytes;
   Family f;
-  for (const std::vector<Polygon>& polygons : ScoredPolygons(directions_deg, window_deg, steps, offsets)) {
-    for (const Polygon& p : polygons) f.edges.emplace_back(p, radius, tabulate);
-    f.ends.push_back(f.edges.size());
+  f.parts = parts;
+  for (const std::vector<Polygon>& polygons : ScoredPolygons(directions_deg, window_deg, steps, offsets, folded)) {
+    for (const Polygon& p : polygons) {
+      if (folded) {
+        for (const Polygon& q : TentFoldedImages(p)) f.spectra.emplace_back(q, radius, tabulate);
+      } else {
+        f.spectra.emplace_back(p, radius, tabulate);
+      }
+    }
+    f.ends.push_back(f.spectra.size() / parts);
   }
   return f;
+}
+
+// x^2's cosine coefficient int x^2 cos(pi k x) dx on [0, 1].
+double SquareCosine(int k) {
+  if (k == 0) return 1.0 / 3.0;
+  const double sign = (k % 2 == 0) ? 1.0 : -1.0;
+  return 2.0 * sign / (kPi * kPi * static_cast<double>(k) * k);
 }
 
 // The terms of one generator's score over the dual points within `radius`:
@@ -94,15 +130,24 @@ struct Terms {
 
 Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
   const std::vector<Frequency> dual = Rank1DualHalfDisk(n, g, radius);
-  std::vector<double> edge_sum(family.edges.size(), 0.0);
+  const size_t edges = family.Edges();
+  std::vector<double> edge_sum(edges, 0.0);
   double corner = 0.0;
+  std::vector<const IntegerIndicatorSpectrum*> parts(family.spectra.size());
+  for (size_t k = 0; k < parts.size(); ++k) parts[k] = &family.spectra[k];
   for (const Frequency& h : dual) {
     const double hx = h.a, hy = h.b;
-    for (size_t k = 0; k < family.edges.size(); ++k) {
-      edge_sum[k] += family.edges[k].Energy(h.a, h.b);
+    if (family.parts == 1) {
+      for (size_t k = 0; k < edges; ++k) edge_sum[k] += family.spectra[k].Energy(h.a, h.b);
+      // (x - 1/2)(y - 1/2): coefficients i/(2 pi a) * i/(2 pi b) off the axes.
+      if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
+    } else {
+      for (size_t k = 0; k < edges; ++k) {
+        edge_sum[k] += UnionEnergy(&parts[k * family.parts], family.parts, h.a, h.b);
+      }
+      const double c = SquareCosine(h.a) * SquareCosine(h.b);
+      corner += c * c;
     }
-    // (x - 1/2)(y - 1/2): coefficients i/(2 pi a) * i/(2 pi b) off the axes.
-    if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
   }
   // Each half-disk point stands for +-h: the factor 2 keeps these variances.
   // The floor, a tenth of what a good lattice reaches (about 0.3 / N^2), keeps
@@ -114,10 +159,28 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
   size_t k = 0;
   for (size_t end : family.ends) {
     double sum = 0.0;
-    for (; k < end; ++k) sum += std::log(2.0 * edge_sum[k] + floor);
+    if (family.parts == 1) {
+      for (; k < end; ++k) sum += std::log(2.0 * edge_sum[k] + floor);
+    } else {
+      // A folded lattice's variance swings by 4x between neighbouring
+      // normals of the window (its two strips make resonances a plain
+      // lattice does not have); the log of the mean, counted once per edge
+      // (Combine divides by the count), lets no member of the window hide a
+      // bad one.
+      const size_t first = k;
+      double mean = 0.0;
+      for (; k < end; ++k) mean += 2.0 * edge_sum[k];
+      const double count = static_cast<double>(end - first);
+      sum = count * std::log(mean / std::max(1.0, count) + floor);
+    }
     t.directions.push_back(sum);
   }
-  t.corner = kCornerWeight * std::log(2.0 * corner + floor);
+  // A folded lattice integrates the smooth corner term like N^-4, far below
+  // the edges' floor; its own floor, 1e-3 / N^3, is where the lattice is
+  // already far better than Owen-Sobol's N^-3 on smooth functions: below it
+  // the edges decide.
+  const double corner_floor = family.parts == 1 ? floor : 1e-3 / (static_cast<double>(n) * n * n);
+  t.corner = kCornerWeight * std::log(2.0 * corner + corner_floor);
   return t;
 }
 
@@ -205,11 +268,13 @@ StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<d
                                    std::to_string(n));
   }
   const int r_full = FullRadius(n), r_first = FirstRadius(n);
-  const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, kWindowSteps,
-                                                        std::size(kEdgeOffsets), r_full)
-                                         : ScoredFamily(directions_deg, options.window_deg, 1, 2, r_first);
+  const bool folded = options.folded;
+  const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, WindowSteps(folded),
+                                                        FullOffsets(folded), r_full, folded)
+                                         : ScoredFamily(directions_deg, options.window_deg, 1,
+                                                        CoarseOffsets(folded), r_first, folded);
   const Terms t = ScoreTerms(n, g, r_full, family);  // r_first is r_full where the coarse family is final
-  return Combine(t.directions, family.edges.size(), t.corner);
+  return Combine(t.directions, family.Edges(), t.corner);
 }
 
 uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, bool invert_y) {
@@ -235,6 +300,7 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
     cache = own.get();
   }
   using Key = LatticeTermCache::Key;
+  const bool folded = options.folded;
   using Stage = LatticeTermCache::Stage;
   const int r_full = FullRadius(n);
   const int r_first = FirstRadius(n);
@@ -257,11 +323,12 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   std::vector<std::shared_ptr<const std::vector<Held>>> coarse(directions.size());
   std::vector<size_t> coarse_edges(directions.size());
   for (size_t i = 0; i < directions.size(); ++i) {
-    const Key key{n, Stage::kCoarse, options.window_deg, directions[i]};
-    coarse_edges[i] = ScoredPolygons({directions[i]}, options.window_deg, 1, 2).front().size();
+    const Key key{n, Stage::kCoarse, options.window_deg, directions[i], options.folded};
+    coarse_edges[i] =
+        ScoredPolygons({directions[i]}, options.window_deg, 1, CoarseOffsets(folded), folded).front().size();
     coarse[i] = cache->FindDense(key);
     if (!coarse[i]) {
-      const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, 2, r_first);
+      const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, CoarseOffsets(folded), r_first, folded);
       auto terms = std::make_shared<std::vector<Held>>(candidates.size());
       ParallelOver(candidates.size(), options.threads, 16, [&](size_t j) {
         const Terms t = ScoreTerms(n, candidates[j], r_first, f);
@@ -322,10 +389,10 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
         if (progress) progress(++done, total);
         continue;
       }
-      full_edges[i] = ScoredPolygons({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets))
+      full_edges[i] = ScoredPolygons({directions[i]}, options.window_deg, WindowSteps(folded), FullOffsets(folded), folded)
                           .front()
                           .size();
-      const Key key{n, Stage::kFull, options.window_deg, directions[i]};
+      const Key key{n, Stage::kFull, options.window_deg, directions[i], options.folded};
       std::vector<bool> found;
       cache->FindSparse(key, gs, &full[i], &found);
       std::vector<uint32_t> missing;
@@ -336,15 +403,15 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
         // A caller's cache keeps the family's tables too: a key served alone
         // misses a few final terms of a direction the keys before it built
         // (a search's own cache would only hold every direction's at once).
-        const Key family_key{n, Stage::kFullFamily, options.window_deg, directions[i]};
+        const Key family_key{n, Stage::kFullFamily, options.window_deg, directions[i], options.folded};
         auto family = options.cache ? std::static_pointer_cast<const Family>(cache->FindObject(family_key))
                                     : nullptr;
         if (!family) {
           auto built = std::make_shared<const Family>(
-              ScoredFamily({directions[i]}, options.window_deg, kWindowSteps, std::size(kEdgeOffsets), r_full));
+              ScoredFamily({directions[i]}, options.window_deg, WindowSteps(folded), FullOffsets(folded), r_full, folded));
           if (options.cache) {
             size_t bytes = 0;
-            for (const IntegerIndicatorSpectrum& e : built->edges) bytes += e.TableBytes();
+            for (const IntegerIndicatorSpectrum& e : built->spectra) bytes += e.TableBytes();
             cache->PutObject(family_key, built, bytes);
           }
           family = std::move(built);
@@ -409,11 +476,28 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
   return points;
 }
 
+PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
+  Pcg32 rng(HashCombine(seed, 0x74656e74ULL));
+  const double sx = rng.NextDouble(), sy = rng.NextDouble();
+  auto tent = [](double u) { return 1.0 - std::abs(2.0 * u - 1.0); };
+  PointSet points(n);
+  const double inv = 1.0 / n;
+  for (uint64_t i = 0; i < n; ++i) {
+    double x = static_cast<double>(i) * inv + sx, y = static_cast<double>((i * g) % n) * inv + sy;
+    x -= std::floor(x), y -= std::floor(y);
+    // The fold of u in [0, 1) lies in [0, 1]; 1 itself (u = 1/2 exactly) is
+    // kept inside the half-open square the sets live in.
+    points[i] = {std::min(tent(x), std::nextafter(1.0, 0.0)), std::min(tent(y), std::nextafter(1.0, 0.0))};
+  }
+  return points;
+}
+
 StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directions_deg,
                                   uint64_t seed, const AlignedLatticeOptions& options) {
   auto choice = ChooseAlignedLatticeGenerator(n, directions_deg, options);
   if (!choice.ok()) return choice.status();
-  return Rank1LatticePoints(n, choice->generator, seed);
+  return options.folded ? TentLatticePoints(n, choice->generator, seed)
+                        : Rank1LatticePoints(n, choice->generator, seed);
 }
 
 }  // namespace alignset

@@ -34,8 +34,25 @@ namespace alignset {
 // the smallest g, so the choice is a function of (N, directions, options).
 class LatticeTermCache;  // core/optimize/lattice_term_cache.h
 
+// The window a tent-folded lattice is chosen for by default: its variance
+// swings between neighbouring normals more than a plain lattice's (resonances
+// of its two strips), and over +-1 degree its choice lost to Owen-Sobol 2
+// degrees off (0.2x at N = 4096, theta = 82); over +-2 degrees, sampled every
+// quarter degree, every edge within 2 degrees stayed at least 1.2x below
+// (docs/results.md, "Tent-folded lattices").
+inline constexpr double kTentLatticeWindowDeg = 2.0;
+
 struct AlignedLatticeOptions {
   double window_deg = 1.0;
+  // Choose g for the tent-folded lattice (TentLatticePoints) instead: the
+  // variance of f under a shift before the fold is the sum over the dual
+  // points of f's cosine coefficients squared,
+  //   c(h) = int f(x, y) cos(pi h_x x) cos(pi h_y y),
+  // which for a step edge is the spectrum of the edge folded into the four
+  // quadrants (directions d and 180 - d); the corner term is x^2 y^2's, whose
+  // coefficients 2 (-1)^k / (pi k)^2 (1/3 at k = 0) in each coordinate lie on
+  // the hyperbolic cross, as a smooth function's do after the fold.
+  bool folded = false;
   int finalists = 32;
   int threads = 1;  // 0: all cores; the choice does not depend on it
   // Terms kept between searches (a server's, shared by its workers): a key
@@ -88,7 +105,22 @@ uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, b
 // its middle): the midpoint rule in each coordinate.
 PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 
-// ChooseAlignedLatticeGenerator, then Rank1LatticePoints.
+// The tent-folded lattice with generator g and realization `seed`: each
+// point of the lattice {frac(i (1, g) / N + s)}, s uniform in [0, 1)^2 drawn
+// from the seed, mapped by the tent phi(u) = 1 - |2 u - 1| in each
+// coordinate. The fold makes every integrand continuous across the borders
+// of the torus the lattice lives on, so a smooth function that is not
+// periodic on the square, whose periodic extension jumps at the borders and
+// costs a plain lattice its convergence, keeps a fast one (its cosine
+// coefficients decay like 1/(h_x h_y)^2); a step edge with normal d becomes
+// four half-size edges with normals d and 180 - d, which the generator
+// (AlignedLatticeOptions::folded) keeps dark. The shift is continuous, so
+// the realizations are unbiased for every integrand (the mean over s is the
+// integral: phi maps the uniform measure to itself).
+PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed);
+
+// ChooseAlignedLatticeGenerator, then Rank1LatticePoints (TentLatticePoints
+// with options.folded).
 StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directions_deg,
                                   uint64_t seed, const AlignedLatticeOptions& options = {});
 

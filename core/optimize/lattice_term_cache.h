@@ -34,9 +34,10 @@ class LatticeTermCache {
     Stage stage = Stage::kCoarse;
     double window_deg = 0.0;
     double direction_deg = 0.0;
+    bool folded = false;  // AlignedLatticeOptions::folded
     bool operator<(const Key& o) const {
-      return std::tie(n, stage, window_deg, direction_deg) <
-             std::tie(o.n, o.stage, o.window_deg, o.direction_deg);
+      return std::tie(n, stage, window_deg, direction_deg, folded) <
+             std::tie(o.n, o.stage, o.window_deg, o.direction_deg, o.folded);
     }
   };
   struct Stats {

@@ -1,0 +1,32 @@
+#include "core/analysis/folded_indicator_spectrum.h"
+
+#include <algorithm>
+
+namespace alignset {
+
+std::vector<Polygon> TentFoldedImages(const Polygon& p) {
+  std::vector<Polygon> out;
+  for (int mx = 0; mx < 2; ++mx) {
+    for (int my = 0; my < 2; ++my) {
+      Polygon q;
+      for (const Vec2& v : p) {
+        q.push_back({mx ? 1.0 - 0.5 * v.x : 0.5 * v.x, my ? 1.0 - 0.5 * v.y : 0.5 * v.y});
+      }
+      // One mirror reverses the orientation.
+      if (mx != my) std::reverse(q.begin(), q.end());
+      out.push_back(std::move(q));
+    }
+  }
+  return out;
+}
+
+FoldedIndicatorSpectrum::FoldedIndicatorSpectrum(const Polygon& polygon, int radius, bool tabulate) {
+  for (const Polygon& q : TentFoldedImages(polygon)) parts_.emplace_back(q, radius, tabulate);
+}
+
+double FoldedIndicatorSpectrum::Energy(int hx, int hy) const {
+  const IntegerIndicatorSpectrum* p[4] = {&parts_[0], &parts_[1], &parts_[2], &parts_[3]};
+  return UnionEnergy(p, 4, hx, hy);
+}
+
+}  // namespace alignset
