@@ -18,8 +18,15 @@ measures, with NumPy only:
 Each sampler sees the same shifts and the same integrands. Several files for
 one sampler (Owen-Sobol scrambles, lattice realizations) are averaged.
 
+A sampler given with --randomized instead of --label is a randomization of
+its own (the tent-folded lattice: shifted, then folded): its file holds many
+'#'-separated realizations, and the edge, gauss0 and ramp0 columns are the
+mean squared error over them with no shift added (the realizations are its
+shifts); the -cp columns CP-shift the first 8 realizations as served, what a
+user who shifts the set per pixel gets.
+
   construction_eval.py --theta 37 --label NAME FILE [FILE ...] [--label NAME FILE ...]
-      [--shifts 512] [--gaussians 1024] [--out table.tsv]
+      [--randomized NAME FILE] [--shifts 512] [--gaussians 1024] [--out table.tsv]
   construction_eval.py --self-test   checks the evaluator against closed forms
 """
 import argparse
@@ -39,6 +46,25 @@ def read_points(path):
             x, y = line.split()[:2]
             rows.append((float(x), float(y)))
     return np.array(rows)
+
+
+def read_sets(path):
+    """The '#'-separated point sets of one file."""
+    sets, rows = [], []
+    with open(path) as fh:
+        for line in fh:
+            line = line.strip()
+            if line.startswith("#"):
+                if rows:
+                    sets.append(np.array(rows))
+                    rows = []
+                continue
+            if line:
+                x, y = line.split()[:2]
+                rows.append((float(x), float(y)))
+    if rows:
+        sets.append(np.array(rows))
+    return sets
 
 
 def clipped_area(theta_deg, offset):
@@ -102,7 +128,10 @@ RAMPS = [(lambda p: p[:, 0] + p[:, 1], 1.0), (lambda p: p[:, 0] ** 2 + 0.5 * p[:
 
 
 def edge_variance(points, theta, deltas, shifts):
+    """points: one set, CP-shifted by each of `shifts`; or, with shifts None,
+    a list of realizations, each taken as it is."""
     offsets = np.linspace(-0.25, 0.25, 8)
+    variants = points if shifts is None else [(points + s) % 1.0 for s in shifts]
     out = []
     for d in deltas:
         v = []
@@ -112,10 +141,7 @@ def edge_variance(points, theta, deltas, shifts):
             for o in offsets:
                 c = np.array([0.5, 0.5]) + o * n
                 ref = clipped_area(t, o)
-                est = np.empty(len(shifts))
-                for k, s in enumerate(shifts):
-                    q = (points + s) % 1.0
-                    est[k] = np.mean(q @ n >= c @ n)
+                est = np.array([np.mean(q @ n >= c @ n) for q in variants])
                 v.append(np.mean((est - ref) ** 2))
         out.append(float(np.mean(v)))
     return out
@@ -134,6 +160,21 @@ def evaluate(points, theta, deltas, shifts, gaussians, gauss_shifts):
     return r
 
 
+def evaluate_randomized(sets, theta, deltas, shifts, gaussians, gauss_shifts):
+    """The columns of evaluate() for a sampler randomized by its realizations."""
+    r = {}
+    for d, v in zip(deltas, edge_variance(sets, theta, deltas, None)):
+        r["edge %g" % d] = v
+    r["gauss0"] = float(np.mean([np.mean((gaussians.mean_values(p) - gaussians.reference) ** 2) for p in sets]))
+    served = sets[:8]
+    r["gauss-cp"] = float(np.mean([np.mean((gaussians.mean_values((p + s) % 1.0) - gaussians.reference) ** 2)
+                                   for p in served for s in gauss_shifts]))
+    for name, (f, ref) in zip(("ramp1", "ramp2"), RAMPS):
+        r[name + "0"] = float(np.mean([(f(p).mean() - ref) ** 2 for p in sets]))
+        r[name + "-cp"] = float(np.mean([(f((p + s) % 1.0).mean() - ref) ** 2 for p in served for s in shifts]))
+    return r
+
+
 def self_test():
     """The evaluator against what is known in closed form: one point under
     CP shifts has variance A (1 - A) on an indicator of area A (the edges'
@@ -146,6 +187,11 @@ def self_test():
     expected = np.mean([clipped_area(30.0, o) * (1 - clipped_area(30.0, o)) for o in offsets])
     ok = abs(v / expected - 1) < 0.03
     print("one point: %.4f against A(1-A) = %.4f: %s" % (v, expected, "ok" if ok else "FAIL"))
+    # The same through realizations (--randomized): uniform one-point sets.
+    vr = edge_variance(list(rng.random((20000, 1, 2))), 30.0, [0], None)[0]
+    ok_r = abs(vr / expected - 1) < 0.03
+    print("one point, realizations: %.4f against %.4f: %s" % (vr, expected, "ok" if ok_r else "FAIL"))
+    ok = ok and ok_r
     nodes, weights = gauss_legendre_grid()
     s, c = 0.1, (0.3, 0.8)
     quad = weights @ np.exp(-0.5 * (((nodes[:, 0] - c[0]) / s) ** 2 + ((nodes[:, 1] - c[1]) / s) ** 2))
@@ -169,9 +215,9 @@ def main():
     groups, label = [], None
     it = iter(rest)
     for tok in it:
-        if tok == "--label":
+        if tok in ("--label", "--randomized"):
             label = next(it)
-            groups.append((label, []))
+            groups.append((label, [], tok == "--randomized"))
         else:
             if not groups:
                 sys.exit("construction_eval: a file before the first --label")
@@ -182,7 +228,12 @@ def main():
     gaussians = Gaussians(a.gaussians)
     deltas = [0, 0.5, 1, 2]
     rows = []
-    for label, files in groups:
+    for label, files, randomized in groups:
+        if randomized:
+            sets = [p for f in files for p in read_sets(f)]
+            mean = evaluate_randomized(sets, a.theta, deltas, shifts, gaussians, gauss_shifts)
+            rows.append((label, len(sets[0]), len(sets), mean))
+            continue
         per = [evaluate(read_points(f), a.theta, deltas, shifts, gaussians, gauss_shifts) for f in files]
         mean = {k: float(np.mean([p[k] for p in per])) for k in per[0]}
         n = len(read_points(files[0]))

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Constructions side by side, judged by bench/construction_eval.py (NumPy,
 # no code shared with the core): Owen-Sobol (16 scrambles), the aligned
-# lattice (4 realizations), the aligned net (2 realizations) and the
-# optimized set (one seed), on edges at
+# lattice (4 realizations), the tent-folded lattice (64 realizations, its own
+# randomization: construction_eval.py --randomized), the aligned net (2
+# realizations) and the optimized set (one seed), on edges at
 # theta + 0 / 0.5 / 1 / 2 degrees, 1024 seeded Gaussians and two ramps,
 # with and without Cranley-Patterson shifts.
 #
 #   N=256,1024,4096 THETA=10,30,45,63,82 bash bench/construction_eval.sh [OUT.tsv]
+#   CONSTRUCTIONS="lattice tent-lattice net optimized" (the default): which to
+#   measure beside Owen-Sobol (the evaluator's shifts and Gaussians are seeded:
+#   Owen-Sobol's rows are the same in every run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${BUILD_DIR:-build}"
@@ -17,39 +21,65 @@ SHIFTS="${SHIFTS:-256}"
 GAUSSIANS="${GAUSSIANS:-1024}"
 # Two-direction sets, A:B pairs, judged on the edges of both directions.
 PAIRS="${PAIRS:-30:120,20:65}"
+CONSTRUCTIONS="${CONSTRUCTIONS:-lattice tent-lattice net optimized}"
 OUT="${1:-bench/results/construction_eval.tsv}"
 WORK="$BUILD_DIR/construction-eval"
 mkdir -p "$WORK"
 : > "$OUT"
+has() { [[ " $CONSTRUCTIONS " == *" $1 "* ]]; }
 for n in ${N//,/ }; do
   for s in $(seq 1 16); do
     [ -f "$WORK/os_${n}_$s.txt" ] || "$CLI" sample owen-sobol -n "$n" -s "$s" -o "$WORK/os_${n}_$s.txt" >/dev/null
   done
   for t in ${THETA//,/ }; do
-    for s in 1 2 3 4; do
-      "$CLI" optimize -n "$n" --dir "$t" --construction lattice -s "$s" -o "$WORK/lat_${n}_${t}_$s.txt" >/dev/null
-    done
-    for s in 1 2; do
-      [ -f "$WORK/net_${n}_${t}_$s.txt" ] || "$CLI" optimize -n "$n" --dir "$t" --construction net -s "$s" -o "$WORK/net_${n}_${t}_$s.txt" >/dev/null
-    done
-    [ -f "$WORK/opt_${n}_${t}.txt" ] || "$CLI" optimize -n "$n" --dir "$t" -s 1 -o "$WORK/opt_${n}_${t}.txt" >/dev/null 2>&1
+    args=(--label owen-sobol "$WORK"/os_${n}_*.txt)
+    if has lattice; then
+      for s in 1 2 3 4; do
+        "$CLI" optimize -n "$n" --dir "$t" --construction lattice -s "$s" -o "$WORK/lat_${n}_${t}_$s.txt" >/dev/null
+      done
+      args+=(--label lattice "$WORK"/lat_${n}_${t}_*.txt)
+    fi
+    if has tent-lattice; then
+      "$CLI" optimize -n "$n" --dir "$t" --construction tent-lattice -m 64 -o "$WORK/tent_${n}_${t}.txt" >/dev/null
+      args+=(--randomized tent-lattice "$WORK/tent_${n}_${t}.txt")
+    fi
+    if has net; then
+      for s in 1 2; do
+        [ -f "$WORK/net_${n}_${t}_$s.txt" ] || "$CLI" optimize -n "$n" --dir "$t" --construction net -s "$s" -o "$WORK/net_${n}_${t}_$s.txt" >/dev/null
+      done
+      args+=(--label net "$WORK"/net_${n}_${t}_*.txt)
+    fi
+    if has optimized; then
+      [ -f "$WORK/opt_${n}_${t}.txt" ] || "$CLI" optimize -n "$n" --dir "$t" -s 1 -o "$WORK/opt_${n}_${t}.txt" >/dev/null 2>&1
+      args+=(--label optimized "$WORK/opt_${n}_${t}.txt")
+    fi
     /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
-      --label owen-sobol "$WORK"/os_${n}_*.txt --label lattice "$WORK"/lat_${n}_${t}_*.txt \
-      --label net "$WORK"/net_${n}_${t}_*.txt \
-      --label optimized "$WORK/opt_${n}_${t}.txt" --out "$OUT.part" | tail -n +2
+      "${args[@]}" --out "$OUT.part" | tail -n +2
   done
   for pair in ${PAIRS//,/ }; do
     a="${pair%%:*}"; b="${pair##*:}"
-    for s in 1 2 3 4; do
-      "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction lattice -s "$s" -o "$WORK/lat2_${n}_${a}_${b}_$s.txt" >/dev/null
-    done
-    [ -f "$WORK/net2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction net -s 1 -o "$WORK/net2_${n}_${a}_${b}.txt" >/dev/null
-    [ -f "$WORK/opt2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" -s 1 -o "$WORK/opt2_${n}_${a}_${b}.txt" >/dev/null 2>&1
+    args=()
+    if has lattice; then
+      for s in 1 2 3 4; do
+        "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction lattice -s "$s" -o "$WORK/lat2_${n}_${a}_${b}_$s.txt" >/dev/null
+      done
+      args+=(--label "lattice-2dir($a,$b)" "$WORK"/lat2_${n}_${a}_${b}_*.txt)
+    fi
+    if has tent-lattice; then
+      "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction tent-lattice -m 64 -o "$WORK/tent2_${n}_${a}_${b}.txt" >/dev/null
+      args+=(--randomized "tent-lattice-2dir($a,$b)" "$WORK/tent2_${n}_${a}_${b}.txt")
+    fi
+    if has net; then
+      [ -f "$WORK/net2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction net -s 1 -o "$WORK/net2_${n}_${a}_${b}.txt" >/dev/null
+      args+=(--label "net-2dir($a,$b)" "$WORK/net2_${n}_${a}_${b}.txt")
+    fi
+    if has optimized; then
+      [ -f "$WORK/opt2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" -s 1 -o "$WORK/opt2_${n}_${a}_${b}.txt" >/dev/null 2>&1
+      args+=(--label "optimized-2dir($a,$b)" "$WORK/opt2_${n}_${a}_${b}.txt")
+    fi
     for t in "$a" "$b"; do
       /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
-        --label owen-sobol "$WORK"/os_${n}_*.txt --label "lattice-2dir($a,$b)" "$WORK"/lat2_${n}_${a}_${b}_*.txt \
-        --label "net-2dir($a,$b)" "$WORK/net2_${n}_${a}_${b}.txt" \
-        --label "optimized-2dir($a,$b)" "$WORK/opt2_${n}_${a}_${b}.txt" --out "$OUT.part" | tail -n +2
+        --label owen-sobol "$WORK"/os_${n}_*.txt "${args[@]}" --out "$OUT.part" | tail -n +2
     done
   done
 done

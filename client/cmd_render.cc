@@ -37,6 +37,8 @@ std::string SamplerHelp() {
        "  aligned-exact        aligned sets for θ from the scene's geometry (the bound)\n"
        "  aligned-lattice, aligned-lattice-exact  as aligned / aligned-exact, with aligned rank-1\n"
        "                       lattices chosen locally for each served θ (no server)\n"
+       "  aligned-tent-lattice, aligned-tent-lattice-exact  the same lattices tent-folded after\n"
+       "                       each pixel's shift (smooth shading integrated far better)\n"
        "  line, segment        line / segment samples (Singh, Miller and Jarosz, \"Variance and\n"
        "                       Convergence Analysis of Monte Carlo Line and Segment Sampling\"),\n"
        "                       --orientation\n";
@@ -141,8 +143,8 @@ void AddRenderCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "on", "unbiased", "off"}));
   c->add_option("--lattice-window", o->request.lattice_window_deg,
-                 "aligned-lattice*: degrees either side of a pixel's θ its lattice is chosen for")
-      ->capture_default_str()
+                 "aligned-lattice*, aligned-tent-lattice*: degrees either side of a pixel's θ its\n"
+                 "lattice is chosen for (default 1; tent 2)")
       ->check(FiniteIn(0.0, 10.0));
   c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
   AddServiceOptions(c, &o->service);

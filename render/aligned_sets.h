@@ -32,6 +32,9 @@ struct AlignedSetTable {
   uint32_t n = 0;
   std::vector<PointSet> one;                       // one[k], k in [0, 180); empty: not fetched
   std::map<std::pair<int, int>, PointSet> two;     // by (a, b), a < b
+  // Tent-folded lattices (render/lattice_sets.h): the sets are the lattices
+  // unfolded; a pixel folds each point by 1 - |2u - 1| after its shift.
+  bool folded = false;
   const PointSet* One(int served_deg) const;
   const PointSet* Two(int a, int b) const;
 };

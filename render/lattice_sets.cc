@@ -14,7 +14,7 @@ namespace alignset::render {
 StatusOr<AlignedSetTable> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats,
-    const std::function<void(double done, double total)>& progress) {
+    const std::function<void(double done, double total)>& progress, bool folded) {
   const auto t0 = std::chrono::steady_clock::now();
   // Checked up front, so that a bad N or window is refused even when no
   // pixel needs a lattice.
@@ -59,10 +59,12 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
     if (Status s = add({static_cast<double>(a), static_cast<double>(b)}, -1, {a, b}); !s.ok()) return s;
   }
   AlignedLatticeOptions o;
+  o.folded = folded;
   o.window_deg = window_deg;
   o.threads = threads;
   AlignedSetTable table;
   table.n = n;
+  table.folded = folded;
   table.one.resize(180);
   // All keys in one call: the first stage's work per degree is shared by
   // every pair the degree is in.
@@ -80,7 +82,10 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
     const uint32_t g = MapLatticeGenerator(n, by_key.at({s.how.key.phi1, s.how.key.phi2}), s.how.ops.swap,
                                            s.how.ops.invert, s.how.ops.invert_y);
     // One realization for every pixel: the per-pixel Cranley-Patterson
-    // shift is what decorrelates pixels (and keeps each unbiased).
+    // shift is what decorrelates pixels (and keeps each unbiased). Folded,
+    // the lattice is stored unfolded and the sampler folds after the shift
+    // (the tent is even and mirrors to a half shift, so the generator of
+    // the mirrored key, N - g, folds to the same sets as g).
     PointSet points = Rank1LatticePoints(n, g, 0);
     if (s.one >= 0) {
       table.one[s.one] = std::move(points);

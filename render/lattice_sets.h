@@ -29,9 +29,13 @@ struct LatticeTableStats {
   size_t searched = 0;      // generator searches: one per canonical key
   double seconds = 0.0;
 };
+//
+// folded (sampler aligned-tent-lattice): the generators are chosen for the
+// tent-folded lattice (AlignedLatticeOptions::folded) and the table is
+// marked folded: a pixel's shift goes before the fold.
 StatusOr<AlignedSetTable> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats = nullptr,
-    const std::function<void(double done, double total)>& progress = {});
+    const std::function<void(double done, double total)>& progress = {}, bool folded = false);
 
 }  // namespace alignset::render

@@ -134,9 +134,17 @@ class Aligned : public PixelSampler {
     // The client library's per-pixel recipe (<alignset/pixel_sampler.h>).
     const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
     double sum = 0.0;
-    for (const Point2& p : *set) {
-      const Point2 q = ShiftPoint(p, s);
-      sum += f.Eval({q.x, q.y});
+    if (sets_->folded) {
+      auto tent = [](double u) { return 1.0 - std::abs(2.0 * u - 1.0); };
+      for (const Point2& p : *set) {
+        const Point2 q = ShiftPoint(p, s);
+        sum += f.Eval({tent(q.x), tent(q.y)});
+      }
+    } else {
+      for (const Point2& p : *set) {
+        const Point2 q = ShiftPoint(p, s);
+        sum += f.Eval({q.x, q.y});
+      }
     }
     return sum / static_cast<double>(set->size());
   }
@@ -284,7 +292,8 @@ double SegmentEstimate(const PixelIntegrand& f, uint32_t n, double segment_deg, 
 
 std::vector<std::string> RenderSamplerNames() {
   return {"pmj02bn-sheared", "pmj02bn-sheared-exact", "screen-space-rank1", "aligned",
-          "aligned-exact", "aligned-lattice", "aligned-lattice-exact", "line", "segment"};
+          "aligned-exact", "aligned-lattice", "aligned-lattice-exact", "aligned-tent-lattice",
+          "aligned-tent-lattice-exact", "line", "segment"};
 }
 
 namespace {
@@ -308,13 +317,16 @@ StatusOr<std::unique_ptr<PixelSampler>> MakeBaseSampler(const SamplerConfig& c) 
     return std::unique_ptr<PixelSampler>(new ScreenSpace(c.n, *c.tile));
   }
   if (name == "aligned" || name == "aligned-exact" || name == "aligned-lattice" ||
-      name == "aligned-lattice-exact") {
-    const bool exact = name == "aligned-exact" || name == "aligned-lattice-exact";
+      name == "aligned-lattice-exact" || name == "aligned-tent-lattice" || name == "aligned-tent-lattice-exact") {
+    const bool exact = name == "aligned-exact" || name == "aligned-lattice-exact" ||
+                       name == "aligned-tent-lattice-exact";
+    const bool tent = name.find("tent") != std::string::npos;
     const auto* dirs = exact ? c.exact : c.estimated;
     if (Status s = need_dirs(dirs); !s.ok()) return s;
-    if (!c.sets || c.sets->n != c.n) {
+    if (!c.sets || c.sets->n != c.n || c.sets->folded != tent) {
       return Status::InvalidArgument(name + " needs the " +
-                                     (name.find("lattice") != std::string::npos ? "lattice" : "aligned") +
+                                     (tent ? "tent-folded lattice"
+                                           : name.find("lattice") != std::string::npos ? "lattice" : "aligned") +
                                      " sets of N = " + std::to_string(c.n));
     }
     return std::unique_ptr<PixelSampler>(
@@ -350,13 +362,15 @@ StatusOr<std::unique_ptr<PixelSampler>> MakeBaseSampler(const SamplerConfig& c) 
 
 bool ReadsEstimatedDirections(const SamplerConfig& c) {
   if (c.name == "line" || c.name == "segment") return c.orientation != LineOrientation::kRandom;
-  return c.name == "aligned" || c.name == "aligned-lattice" || c.name == "pmj02bn-sheared";
+  return c.name == "aligned" || c.name == "aligned-lattice" || c.name == "aligned-tent-lattice" ||
+         c.name == "pmj02bn-sheared";
 }
 
 StatusOr<std::unique_ptr<PixelSampler>> MakePixelSampler(const SamplerConfig& c) {
   auto base = MakeBaseSampler(c);
   if (!base.ok() || !c.reuse_prepass || !ReadsEstimatedDirections(c)) return base;
-  const bool owen_sobol_when_none = (c.name == "aligned" || c.name == "aligned-lattice") &&
+  const bool owen_sobol_when_none =
+      (c.name == "aligned" || c.name == "aligned-lattice" || c.name == "aligned-tent-lattice") &&
                                     c.policy.none == AlignedPolicy::None::kOwenSobol;
   return ReusePrepass(std::move(*base), c.estimated, c.n, c.continue_prepass && owen_sobol_when_none);
 }

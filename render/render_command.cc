@@ -8,6 +8,7 @@
 
 #include "render/direction.h"
 #include "render/lattice_sets.h"
+#include "core/optimize/aligned_lattice.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/set_fetch.h"
@@ -85,11 +86,14 @@ StatusOr<RenderSummary> RunRender(
     summary.note = "180 one-direction and " + std::to_string(pairs.size()) +
                    " two-direction sets from " + r.server.address;
   }
-  if (r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact") {
+  const bool tent = r.sampler == "aligned-tent-lattice" || r.sampler == "aligned-tent-lattice-exact";
+  if (r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent) {
     LatticeTableStats st;
+    const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
     auto built = AlignedLatticeTable(
-        r.spp, {r.sampler == "aligned-lattice" ? &estimated : &exact}, c.policy, r.lattice_window_deg,
-        r.threads, &st, [&](double done, double total) { progress("lattices", done, total, ""); });
+        r.spp, {estimated_dirs ? &estimated : &exact}, c.policy,
+        r.lattice_window_deg.value_or(tent ? kTentLatticeWindowDeg : 1.0), r.threads, &st,
+        [&](double done, double total) { progress("lattices", done, total, ""); }, tent);
     if (!built.ok()) return built.status();
     table = std::move(*built);
     c.sets = &table;

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "render/pixel_samplers.h"
@@ -31,7 +32,9 @@ struct RenderRequest {
   // auto when the pre-pass allows it; on refuses one that does not;
   // unbiased as on, with the count weights on direction-less pixels too.
   PrepassReuse reuse_prepass = PrepassReuse::kAuto;
-  double lattice_window_deg = 1.0;  // aligned-lattice*: the window of normals a generator is chosen for
+  // aligned-lattice*, aligned-tent-lattice*: the window of normals a
+  // generator is chosen for (default 1 degree; tent kTentLatticeWindowDeg).
+  std::optional<double> lattice_window_deg;
   ConnectOptions server;       // aligned, aligned-exact only
 };
 

@@ -86,18 +86,19 @@ struct Variant {
 };
 
 bool IsLattice(const Variant& v) { return v.sampler.rfind("aligned-lattice", 0) == 0; }
+bool IsTentLattice(const Variant& v) { return v.sampler.rfind("aligned-tent-lattice", 0) == 0; }
 
 std::vector<Variant> AllVariants() {
   std::vector<Variant> v;
   for (const char* s : {"random", "owen-sobol", "pmj02bn", "pmj02bn-sheared", "rank1-lattice",
                         "screen-space-rank1", "aligned", "aligned-exact", "aligned-lattice",
-                        "aligned-lattice-exact"}) {
+                        "aligned-lattice-exact", "aligned-tent-lattice", "aligned-tent-lattice-exact"}) {
     v.push_back({s, s});
   }
   // Every sample counted and used: the estimated samplers with their
   // (randomized) pre-pass folded in; labels end in "+reuse" (the renderer's
   // default) or "+unbiased" (count weights on direction-less pixels too).
-  for (const char* s : {"aligned", "aligned-lattice", "pmj02bn-sheared"}) {
+  for (const char* s : {"aligned", "aligned-lattice", "aligned-tent-lattice", "pmj02bn-sheared"}) {
     Variant r{std::string(s) + "+reuse", s};
     r.reuse = true;
     v.push_back(r);
@@ -273,7 +274,7 @@ int Main(int argc, char** argv) {
       {"scenes", "antialias,shadow"}, {"samplers", ""}, {"threads", "2"}, {"seed", "1"},
       {"prepass", kDefaultPrepass}, {"alt-prepass", "samples256"},
       {"compare-prepass", "grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024"},
-      {"line-rates", "1"}, {"two-max-n", "65536"}, {"lattice-window", "1"}};
+      {"line-rates", "1"}, {"two-max-n", "65536"}, {"lattice-window", "1"}, {"tent-window", "2"}};
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0 || i + 1 >= argc || !a.count(k.substr(2))) {
@@ -444,6 +445,12 @@ int Main(int argc, char** argv) {
                  a["lattice-window"].c_str());
     return 2;
   }
+  // aligned-tent-lattice*: the same for the tent-folded lattices.
+  const double tent_window = std::strtod(a["tent-window"].c_str(), nullptr);
+  if (!(tent_window >= 0.0 && tent_window <= 10.0)) {
+    std::fprintf(stderr, "render_bench: --tent-window must be in [0, 10] degrees, got %s\n", a["tent-window"].c_str());
+    return 2;
+  }
   for (uint32_t n : ns) {
     // Above two_max_n the two-direction variants fall back to one direction,
     // so the *-1dir ablation would repeat its parent.
@@ -490,33 +497,34 @@ int Main(int argc, char** argv) {
       std::fprintf(stderr, "N=%u: 180 one-direction and %zu two-direction sets in %.1f s\n", n,
                    pairs.size(), Seconds(t0));
     }
-    // The aligned lattices, chosen here for the served degrees and pairs the
-    // lattice variants' direction maps need (no server).
-    AlignedSetTable lattices;
-    {
+    // The aligned lattices (and the tent-folded ones), chosen here for the
+    // served degrees and pairs the lattice variants' direction maps need (no
+    // server).
+    AlignedSetTable lattices, tents;
+    for (const bool folded : {false, true}) {
       std::vector<const std::vector<PixelDirection>*> maps;
       AlignedPolicy policy;
       for (const SceneData& d : scenes) {
         for (const Variant& v : now) {
-          if (!IsLattice(v)) continue;
-          maps.push_back(v.sampler == "aligned-lattice-exact" ? &d.exact : &d.estimated);
+          if (!(folded ? IsTentLattice(v) : IsLattice(v))) continue;
+          const bool exact = v.sampler == "aligned-lattice-exact" || v.sampler == "aligned-tent-lattice-exact";
+          maps.push_back(exact ? &d.exact : &d.estimated);
           policy = v.policy;
         }
       }
-      if (!maps.empty()) {
-        LatticeTableStats st;
-        cli::Progress bar("lattices");
-        auto built = AlignedLatticeTable(n, maps, policy, lattice_window, threads, &st,
-                                         [&](double done, double total) { bar.Update(done, total, ""); });
-        bar.Finish("");
-        if (!built.ok()) {
-          std::fprintf(stderr, "render_bench: N=%u: %s\n", n, built.status().message().c_str());
-          return 1;
-        }
-        lattices = std::move(*built);
-        std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction lattices (%zu searches) in %.1f s\n",
-                     n, st.one, st.two, st.searched, st.seconds);
+      if (maps.empty()) continue;
+      LatticeTableStats st;
+      cli::Progress bar(folded ? "tent lattices" : "lattices");
+      auto built = AlignedLatticeTable(n, maps, policy, folded ? tent_window : lattice_window, threads, &st,
+                                       [&](double done, double total) { bar.Update(done, total, ""); }, folded);
+      bar.Finish("");
+      if (!built.ok()) {
+        std::fprintf(stderr, "render_bench: N=%u: %s\n", n, built.status().message().c_str());
+        return 1;
       }
+      (folded ? tents : lattices) = std::move(*built);
+      std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction %slattices (%zu searches) in %.1f s\n",
+                   n, st.one, st.two, folded ? "tent-folded " : "", st.searched, st.seconds);
     }
     ShiftTile tile;
     bool need_tile = false;
@@ -540,7 +548,7 @@ int Main(int argc, char** argv) {
         c.n = n;
         c.estimated = v.prepass.empty() ? &d.estimated : &d.by_prepass.at(v.prepass);
         c.exact = &d.exact;
-        c.sets = IsLattice(v) ? &lattices : &table;
+        c.sets = IsTentLattice(v) ? &tents : IsLattice(v) ? &lattices : &table;
         c.policy = v.policy;
         c.per_pixel_shift = v.per_pixel_shift;
         c.reuse_prepass = v.reuse;
@@ -576,6 +584,7 @@ int Main(int argc, char** argv) {
         const bool compared =
             n >= 256 && (v.sampler == "aligned" || v.label == "aligned-exact" ||
                          v.sampler == "aligned-lattice" || v.label == "aligned-lattice-exact" ||
+                         v.sampler == "aligned-tent-lattice" || v.label == "aligned-tent-lattice-exact" ||
                          v.label == "rank1-lattice" || v.label == "screen-space-rank1" ||
                          v.label == "pmj02bn" || v.label == "owen-sobol" || v.label == "pmj02bn-sheared");
         if (compared || std::find(image_ns.begin(), image_ns.end(), n) != image_ns.end()) {

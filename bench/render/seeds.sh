@@ -27,7 +27,7 @@ RAW="${RAW:-$BUILD_DIR/render-seeds}"
 OUT="${OUT:-bench/results/render_seeds.md}"
 optimized_sets=0
 for s in ${SAMPLERS//,/ }; do
-  [[ $s == aligned* && $s != aligned-lattice* ]] && optimized_sets=1
+  [[ $s == aligned* && $s != aligned-lattice* && $s != aligned-tent-lattice* ]] && optimized_sets=1
 done
 if (( optimized_sets )); then TWO_MAX_N="${TWO_MAX_N:-1024}"; else TWO_MAX_N="${TWO_MAX_N:-65536}"; fi
 THREADS="${THREADS:-2}"

@@ -179,17 +179,28 @@ TEST(RenderSamplers, RefusesWhatItCannotDo) {
   EXPECT_FALSE(MakePixelSampler(seg).ok());
 }
 
+// The plain lattices and the tent-folded ones (whose pixels shift before
+// the fold).
 TEST(RenderSamplers, AlignedLatticesAreUnbiasedAndBeatOwenSobolOnStraightEdges) {
   constexpr int kReps = 24;
   constexpr uint32_t kN = 256;
+  for (const bool folded : {false, true}) {
   for (const char* scene : {"antialias", "shadow"}) {
     const Fixture& f = Get(scene);
     LatticeTableStats st;
-    auto table = AlignedLatticeTable(kN, {&f.exact, &f.estimated}, AlignedPolicy{}, 1.0, 1, &st);
+    auto table = AlignedLatticeTable(kN, {&f.exact, &f.estimated}, AlignedPolicy{}, folded ? 2.0 : 1.0, 1, &st,
+                                     {}, folded);
     ASSERT_TRUE(table.ok()) << table.status().message();
     EXPECT_GT(st.one, 0u) << scene;
+    EXPECT_EQ(table->folded, folded);
     double lattice_mse = 0.0, sobol_mse = 0.0;
-    for (const char* name : {"aligned-lattice", "aligned-lattice-exact"}) {
+    const std::string plain = folded ? "aligned-tent-lattice" : "aligned-lattice";
+    // A table of the other kind is refused.
+    SamplerConfig other{folded ? "aligned-lattice" : "aligned-tent-lattice", kN};
+    other.estimated = &f.estimated;
+    other.sets = &*table;
+    EXPECT_FALSE(MakePixelSampler(other).ok()) << plain;
+    for (const std::string& name : {plain, plain + "-exact"}) {
       SamplerConfig c{name, kN};
       c.estimated = &f.estimated;
       c.exact = &f.exact;
@@ -203,7 +214,7 @@ TEST(RenderSamplers, AlignedLatticesAreUnbiasedAndBeatOwenSobolOnStraightEdges) 
         ASSERT_TRUE(std::isfinite(st.mean)) << name << " pixel " << i;  // every key was built
         EXPECT_NEAR(st.mean, px.Exact(), 5.0 * st.sd / std::sqrt(double(kReps)) + 1e-12)
             << scene << " " << name << " pixel " << i;
-        if (std::string(name) == "aligned-lattice-exact" && px.Classify() == PixelClass::kEdge &&
+        if (name == plain + "-exact" && px.Classify() == PixelClass::kEdge &&
             f.exact[i].kind == PixelDirection::Kind::kOne) {
           const Stats so = Replicates(f.scene, **sobol, i, kReps);
           lattice_mse += st.sd * st.sd;
@@ -212,9 +223,11 @@ TEST(RenderSamplers, AlignedLatticesAreUnbiasedAndBeatOwenSobolOnStraightEdges) 
       }
     }
     // A lattice chosen for the edge's normal integrates it with a fraction
-    // of Owen-Sobol's variance (about 1/8 on a clean edge at N = 256);
-    // 1/2 leaves room for the pixels' shading and curvature.
-    EXPECT_LT(lattice_mse, 0.5 * sobol_mse) << scene;
+    // of Owen-Sobol's variance (about 1/8 on a clean edge at N = 256, a
+    // folded one about 1/3); 1/2 leaves room for the pixels' shading and
+    // curvature.
+    EXPECT_LT(lattice_mse, 0.5 * sobol_mse) << scene << " " << plain;
+  }
   }
 }
 
