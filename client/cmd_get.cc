@@ -257,9 +257,12 @@ int RunGet(GetOptions o) {
     const SetInfo& si = s.info;
     if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
                              static_cast<unsigned long long>(si.seed));
-    if (si.construction == "lattice" || si.construction == "net") {
+    if (si.construction == "lattice" || si.construction == "net" || si.construction == "tent-lattice") {
       std::fprintf(report, "construction   aligned %s, %.3f s, profile %s\n",
-                   si.construction == "net" ? "(0,m,2)-net" : "rank-1 lattice", si.optimize_seconds,
+                   si.construction == "net"            ? "(0,m,2)-net"
+                   : si.construction == "tent-lattice" ? "tent-folded rank-1 lattice"
+                                                       : "rank-1 lattice",
+                   si.optimize_seconds,
                    si.profile.c_str());
     } else {
       std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
@@ -311,7 +314,7 @@ void AddGetCommand(CLI::App& app) {
                 "lattice) or net (an aligned (0,m,2)-net, N a power of two); each cached\n"
                 "apart from the others")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

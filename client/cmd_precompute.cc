@@ -35,7 +35,7 @@ struct PrecomputeOptions {
   std::string shard;
   int64_t realizations = 1;
   std::string angle_step = "1";  // the one-direction grid: "1" (46 keys) or "0.25" (181)
-  std::string construction = "optimized";  // or "lattice" or "net"
+  std::string construction = "optimized";  // or "lattice", "tent-lattice" or "net"
   ServiceOptions service;
 };
 
@@ -131,7 +131,7 @@ void AddPrecomputeCommand(CLI::App& app) {
                 "optimized (the server's optimized sets), lattice (aligned rank-1 lattices) or\n"
                 "net (aligned (0,m,2)-nets, N a power of two), each cached apart")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "net"}));
+      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }

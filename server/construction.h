@@ -19,7 +19,12 @@ namespace alignset::server {
 //   of N = 2^m points whose scrambling is chosen for the key's exact
 //   direction(s) +-kNetWindowDeg, cached under kNetProfile; realization r
 //   starts its flips from seed r. N must be a power of two.
-enum class Construction { kOptimized, kLattice, kNet };
+// - kTentLattice ("tent-lattice"): the aligned rank-1 lattice shifted, then
+//   folded by the tent 1 - |2u - 1| (TentLatticePoints), its generator chosen
+//   for the folded edges within +-kTentLatticeWindowDeg of the key's exact
+//   direction(s), cached under kTentLatticeProfile; realization r is
+//   TentLatticePoints(N, g, r), a continuous shift drawn from seed r.
+enum class Construction { kOptimized, kLattice, kNet, kTentLattice };
 
 // The lattice construction's version (bump it, and kLatticeProfile with it,
 // whenever ChooseAlignedLatticeGenerator or Rank1LatticePoints would give a
@@ -33,11 +38,16 @@ inline constexpr const char* kLatticeProfile = "lattice-v2-w1";
 inline constexpr int kNetAlgorithmVersion = 1;
 inline constexpr double kNetWindowDeg = 1.0;
 inline constexpr const char* kNetProfile = "net-v1-w1";
+// The tent-folded lattice's version and profile (window: the core's
+// kTentLatticeWindowDeg, 2 degrees, named in the profile).
+inline constexpr int kTentLatticeAlgorithmVersion = 1;
+inline constexpr const char* kTentLatticeProfile = "tent-lattice-v1-w2";
 
-// "" or "optimized" -> kOptimized, "lattice" -> kLattice, "net" -> kNet;
-// anything else INVALID_ARGUMENT naming the known constructions.
+// "" or "optimized" -> kOptimized, "lattice" -> kLattice, "net" -> kNet,
+// "tent-lattice" -> kTentLattice; anything else INVALID_ARGUMENT naming the
+// known constructions.
 StatusOr<Construction> ParseConstruction(const std::string& name);
-// "optimized", "lattice" or "net".
+// "optimized", "lattice", "net" or "tent-lattice".
 const char* ConstructionName(Construction c);
 // INVALID_ARGUMENT when the construction cannot make N points (a net needs
 // a power of two from 16 to 65536).

@@ -176,6 +176,7 @@ Scheduler::~Scheduler() { Shutdown(); }
 std::string Scheduler::ProfileFor(uint32_t n, Construction construction) const {
   if (construction == Construction::kLattice) return kLatticeProfile;
   if (construction == Construction::kNet) return kNetProfile;
+  if (construction == Construction::kTentLattice) return kTentLatticeProfile;
   std::lock_guard<std::mutex> lock(profile_mu_);
   auto it = profiles_.find(n);
   if (it != profiles_.end()) return it->second;
@@ -738,7 +739,10 @@ Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job,
   // served set is this one aligned by swap / mirror: for a lattice the
   // lattice of the swapped / mirrored generator, for a centred net again a
   // centred net, each integrating the swapped / mirrored edges exactly as
-  // well as the canonical set integrates its own.
+  // well as the canonical set integrates its own; for a tent-folded lattice
+  // the points aligned are again a folded lattice (the tent commutes with the
+  // swap, and a mirror is a half shift before the fold), chosen for folded
+  // edges that are their own mirror images.
   std::vector<double> dirs = {Phi1Degrees(key.dirs)};
   if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
   metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
@@ -750,15 +754,18 @@ Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job,
   std::string detail;
   // The seed is the realization number itself (server/construction.h).
   Status made;
-  if (construction == Construction::kLattice) {
+  if (construction == Construction::kLattice || construction == Construction::kTentLattice) {
+    const bool folded = construction == Construction::kTentLattice;
     AlignedLatticeOptions lattice;
-    lattice.window_deg = kLatticeWindowDeg;
+    lattice.folded = folded;
+    lattice.window_deg = folded ? kTentLatticeWindowDeg : kLatticeWindowDeg;
     lattice.threads = std::max(1, options_.threads_per_worker);
     lattice.cache = &lattice_terms_;
     auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
     made = choice.status();
     if (choice.ok()) {
-      record.points = Rank1LatticePoints(key.n, choice->generator, key.realization);
+      record.points = folded ? TentLatticePoints(key.n, choice->generator, key.realization)
+                             : Rank1LatticePoints(key.n, choice->generator, key.realization);
       detail = fmt::format("generator={} score={:.6g} candidates={}", choice->generator, choice->score,
                            choice->candidates);
     }

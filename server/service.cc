@@ -150,8 +150,9 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
     // realization.
     v1::OptimizationParameters* p = md->mutable_parameters();
     p->set_seed(key.realization);
-    p->set_algorithm_version(construction == Construction::kLattice ? kLatticeAlgorithmVersion
-                                                                    : kNetAlgorithmVersion);
+    p->set_algorithm_version(construction == Construction::kLattice       ? kLatticeAlgorithmVersion
+                             : construction == Construction::kTentLattice ? kTentLatticeAlgorithmVersion
+                                                                          : kNetAlgorithmVersion);
     return;
   }
   const FrequencyParams fp = DefaultFrequencyParams(key.n);

@@ -198,6 +198,40 @@ TEST(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice)
   }
 }
 
+// (b') The tent-folded lattice over the real server: 30 degrees is the
+// folded lattice the core chooses (realization r folded after the shift of
+// seed r), under its own profile; 150 degrees (a mirror) is the same set
+// mirrored, again a folded lattice of that generator (a half shift before
+// the fold), and the plain lattice of the same key is another set.
+TEST(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
+  TempDir dir;
+  ServerProcess server(dir.path(), kFlags);
+  ASSERT_EQ(server.error(), "");
+  auto client = ConnectTo(server);
+  const uint32_t n = 256;
+  AlignedLatticeOptions folded;
+  folded.folded = true;
+  folded.window_deg = kTentLatticeWindowDeg;
+  auto choice = ChooseAlignedLatticeGenerator(n, {30.0}, folded);
+  ASSERT_TRUE(choice.ok());
+  const AlignedSet first = MustGet(*client, n, 30.0, "tent-lattice", 2);
+  EXPECT_EQ(first.points, TentLatticePoints(n, choice->generator, 2));
+  EXPECT_EQ(first.info.construction, "tent-lattice");
+  EXPECT_EQ(first.info.profile, "tent-lattice-v1-w2");
+  EXPECT_EQ(first.info.engine, "tent-lattice");
+  EXPECT_EQ(first.info.algorithm_version, 1);
+  EXPECT_EQ(first.info.seed, 2u);
+  const AlignedSet mirrored = MustGet(*client, n, 150.0, "tent-lattice", 2);
+  EXPECT_TRUE(mirrored.info.from_cache);
+  EXPECT_TRUE(mirrored.info.inverted);
+  ASSERT_EQ(mirrored.points.size(), n);
+  for (uint32_t i = 0; i < n; ++i) {
+    EXPECT_NEAR(mirrored.points[i].x, 1.0 - first.points[i].x, 1e-12);
+    EXPECT_EQ(mirrored.points[i].y, first.points[i].y);
+  }
+  EXPECT_NE(MustGet(*client, n, 30.0, "lattice", 2).raw, first.raw);
+}
+
 // (c) An unknown construction is INVALID_ARGUMENT on every call that takes
 // one, with the known names in the message, and the server keeps serving.
 TEST(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {

@@ -116,6 +116,42 @@ TEST_F(LatticeJobTest, ALatticeKeyIsComputedWithoutTheEngineAndStored) {
   EXPECT_NE((*oe)->record().points, record.points);
 }
 
+// A tent-lattice key is the folded lattice the core chooses, under its own
+// profile: never the plain lattice of the same directions, which shares the
+// server's term cache (the terms are kept apart by the fold).
+TEST_F(LatticeJobTest, ATentLatticeKeyIsTheFoldedLatticeUnderItsOwnProfile) {
+  Scheduler::Options o;
+  o.workers = 1;
+  StartWith(o);
+  const CanonicalDirections dirs{1, 30, 30};
+  const storage::SetKey plain = scheduler_->KeyFor(256, dirs, 3, Construction::kLattice);
+  const storage::SetKey tent = scheduler_->KeyFor(256, dirs, 3, Construction::kTentLattice);
+  EXPECT_EQ(tent.profile, kTentLatticeProfile);
+  EXPECT_NE(tent.profile, plain.profile);
+  EXPECT_EQ(ConstructionOfProfile(kTentLatticeProfile), Construction::kTentLattice);
+  EXPECT_EQ(ParseConstruction("tent-lattice").value(), Construction::kTentLattice);
+  EXPECT_STREQ(ConstructionName(Construction::kTentLattice), "tent-lattice");
+  std::vector<PointSet> got;
+  for (const storage::SetKey& key : {plain, tent}) {
+    auto ticket = MustAcquire(key, Priority::kInteractive);
+    ASSERT_NE(ticket, nullptr);
+    WaitDone(*ticket, 300);
+    auto entry = ticket->Result();
+    ASSERT_TRUE(entry.ok()) << entry.status().message();
+    got.push_back((*entry)->record().points);
+    EXPECT_EQ((*entry)->record().engine, ConstructionName(ConstructionOfProfile(key.profile)));
+  }
+  AlignedLatticeOptions folded;
+  folded.folded = true;
+  folded.window_deg = kTentLatticeWindowDeg;
+  auto choice = ChooseAlignedLatticeGenerator(256, {30.0}, folded);
+  ASSERT_TRUE(choice.ok());
+  EXPECT_EQ(got[1], TentLatticePoints(256, choice->generator, 3));
+  auto plain_choice = ChooseAlignedLatticeGenerator(256, {30.0});
+  ASSERT_TRUE(plain_choice.ok());
+  EXPECT_EQ(got[0], Rank1LatticePoints(256, plain_choice->generator, 3));
+}
+
 // Lattice keys share the search's terms (Scheduler::Options::
 // lattice_terms_bytes): every key and realization, whatever came before it
 // and however small the bound, is the lattice a fresh search chooses.

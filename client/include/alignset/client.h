@@ -90,7 +90,7 @@ struct SetInfo {
   double optimize_seconds = 0.0;
   int iterations = 0;
   std::string engine;
-  // "optimized", "lattice" or "net" (SetRequest::construction). A lattice
+  // "optimized", "lattice", "net" or "tent-lattice" (SetRequest::construction). A lattice
   // has engine "lattice", iterations and losses 0, no optimization
   // parameters, seed = its realization, algorithm_version the lattice
   // construction's; a net likewise with engine "net".

@@ -172,7 +172,8 @@ class Client:
         with its metadata. `realization` (0..63) picks one of the key's
         independent sets; 0 is the key's first. `construction`: None or
         "optimized" (the default, the optimized sets), "lattice" (an aligned
-        rank-1 lattice) or "net" (an aligned (0,m,2)-net, n a power of two),
+        rank-1 lattice), "tent-lattice" (that lattice folded by 1 - |2u - 1|
+        after its shift) or "net" (an aligned (0,m,2)-net, n a power of two),
         each cached apart from the others. Blocks while the server
         optimizes a missing set."""
         request = _request(n, directions, realization, construction)
