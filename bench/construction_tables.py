@@ -58,10 +58,21 @@ def main(argv):
     net_path = os.path.join(res, "family_net.tsv")
     if os.path.exists(net_path):
         pair_table("aligned net | aligned lattice", family(net_path), lat, "net", False)
-    ev = os.path.join(res, "construction_eval.tsv")
-    if os.path.exists(ev):
-        rows = list(csv.DictReader(open(ev), delimiter="\t"))
+    # construction_eval_tent.tsv: the tent-folded lattice measured in a run of
+    # its own (CONSTRUCTIONS=tent-lattice); the evaluator is seeded, so its
+    # Owen-Sobol rows are the main file's, and its rows join the table.
+    rows = []
+    for name in ("construction_eval.tsv", "construction_eval_tent.tsv"):
+        ev = os.path.join(res, name)
+        if os.path.exists(ev):
+            rows += list(csv.DictReader(open(ev), delimiter="\t"))
+    if rows:
         os_rows = {(r["N"], r["theta"]): r for r in rows if r["sampler"] == "owen-sobol"}
+        # Grouped by N, then θ, in the main file's order.
+        order = {}
+        for r in rows:
+            order.setdefault((r["N"], r["theta"]), len(order))
+        rows.sort(key=lambda r: (int(r["N"]), order[(r["N"], r["theta"])]))
         out.append("### The independent evaluator: Owen-Sobol's variance / the construction's "
                    "(higher is better), edges 0 / 0.5 / 1 / 2 degrees off")
         out.append("")

@@ -20,13 +20,18 @@ std::vector<Polygon> TentFoldedImages(const Polygon& p) {
   return out;
 }
 
+std::vector<Polygon> TentFoldedHalf(const Polygon& p) {
+  std::vector<Polygon> all = TentFoldedImages(p);
+  return {std::move(all[0]), std::move(all[2])};
+}
+
 FoldedIndicatorSpectrum::FoldedIndicatorSpectrum(const Polygon& polygon, int radius, bool tabulate) {
-  for (const Polygon& q : TentFoldedImages(polygon)) parts_.emplace_back(q, radius, tabulate);
+  for (const Polygon& q : TentFoldedHalf(polygon)) parts_.emplace_back(q, radius, tabulate);
 }
 
 double FoldedIndicatorSpectrum::Energy(int hx, int hy) const {
-  const IntegerIndicatorSpectrum* p[4] = {&parts_[0], &parts_[1], &parts_[2], &parts_[3]};
-  return UnionEnergy(p, 4, hx, hy);
+  const IntegerIndicatorSpectrum* p[2] = {&parts_[0], &parts_[1]};
+  return SymmetricUnionEnergy(p, 2, hx, hy);
 }
 
 }  // namespace alignset

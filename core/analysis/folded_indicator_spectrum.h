@@ -19,13 +19,20 @@ std::vector<Polygon> TentFoldedImages(const Polygon& p);
 // (core/analysis/lattice_variance.h). g^(h) is f's cosine coefficient
 // int f(x, y) cos(pi h_x x) cos(pi h_y y), the four copies' coefficients
 // added.
+// The copies come in pairs under the point reflection u -> (1, 1) - u
+// (both mirrors), whose coefficients are conjugate, so two of them carry the
+// whole (SymmetricUnionEnergy).
 class FoldedIndicatorSpectrum {
  public:
   FoldedIndicatorSpectrum(const Polygon& polygon, int radius, bool tabulate = true);
   double Energy(int hx, int hy) const;
 
  private:
-  std::vector<IntegerIndicatorSpectrum> parts_;
+  std::vector<IntegerIndicatorSpectrum> parts_;  // the copies with no mirror and with x mirrored
 };
+
+// The two copies FoldedIndicatorSpectrum keeps: TentFoldedImages' first and
+// third (no mirror; x mirrored).
+std::vector<Polygon> TentFoldedHalf(const Polygon& p);
 
 }  // namespace alignset

@@ -144,4 +144,11 @@ double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, i
   return (sr * sr + si * si) / (4.0 * kPi * kPi * h2 * h2);
 }
 
+double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* const* half, size_t count, int hx, int hy) {
+  double si = 0.0;
+  for (size_t i = 0; i < count; ++i) si += half[i]->Sum(hx, hy).imag();
+  const double h2 = static_cast<double>(hx) * hx + static_cast<double>(hy) * hy;
+  return (si * si) / (kPi * kPi * h2 * h2);
+}
+
 }  // namespace alignset

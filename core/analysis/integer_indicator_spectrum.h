@@ -36,10 +36,9 @@ class IntegerIndicatorSpectrum {
   bool Valid() const { return !vertices_.empty(); }
   // h != 0.
   double Energy(int hx, int hy) const;
-  // The coefficient times 2 pi |h|^2 and a phase that depends on h alone, the
-  // same for every polygon: the coefficients of a union of disjoint polygons
-  // add, so its energy is |sum of their Sums|^2 / (4 pi^2 |h|^4)
-  // (FoldedEnergy). h != 0.
+  // The edge sum S(h) of the divergence theorem, f^(h) = i S(h) / (2 pi |h|^2)
+  // (lattice_variance.h's IndicatorSpectrum): the coefficients of a union of
+  // disjoint polygons add, and so do their sums. h != 0.
   std::complex<double> Sum(int hx, int hy) const;
   // The bytes its tables hold.
   size_t TableBytes() const;
@@ -65,5 +64,10 @@ class IntegerIndicatorSpectrum {
 // The energy |f^(h)|^2 of the indicator of a union of polygons with
 // disjoint interiors, each given by its spectrum. h != 0.
 double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, int hx, int hy);
+// The same for a union symmetric under the point reflection u -> (1, 1) - u
+// given by the parts of one half: the other half's coefficients are their
+// conjugates, so f^(h) = 2 Re(sum of the half's f^(h)) = -2 Im(sum of S) /
+// (2 pi |h|^2). h != 0.
+double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* const* half, size_t count, int hx, int hy);
 
 }  // namespace alignset

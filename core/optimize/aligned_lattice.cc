@@ -54,8 +54,9 @@ constexpr uint32_t kFullSearchLimit = 65536;
 constexpr double kMaxTableBytes = 64e6;
 
 struct Family {
-  // Each scored edge is `parts` consecutive spectra: 1, or the 4 quadrant
-  // images of a folded edge, whose coefficients add.
+  // Each scored edge is `parts` consecutive spectra: 1, or 2 of the 4
+  // copies of a folded edge (TentFoldedHalf: the other two are their
+  // conjugates, SymmetricUnionEnergy).
   std::vector<IntegerIndicatorSpectrum> spectra;
   size_t parts = 1;
   std::vector<size_t> ends;  // direction i's edges are [ends[i - 1], ends[i])
@@ -90,18 +91,18 @@ std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& dire
 // within `radius`.
 Family ScoredFamily(const std::vector<double>& directions_deg, double window_deg, int steps,
                     size_t offsets, int radius, bool folded) {
-  const size_t parts = folded ? 4 : 1;
+  const size_t parts = folded ? 2 : 1;
   // Each edge's square has two vertices off the corners, one table each (a
-  // folded edge's images up to five each).
+  // folded edge's two copies up to five each).
   const double bytes = static_cast<double>(directions_deg.size()) * (2 * steps + 1) * offsets *
-                       (folded ? 20.0 : 2.0) * (2.0 * radius + 1.0) * sizeof(std::complex<double>);
+                       (folded ? 10.0 : 2.0) * (2.0 * radius + 1.0) * sizeof(std::complex<double>);
   const bool tabulate = bytes <= kMaxTableBytes;
   Family f;
   f.parts = parts;
   for (const std::vector<Polygon>& polygons : ScoredPolygons(directions_deg, window_deg, steps, offsets, folded)) {
     for (const Polygon& p : polygons) {
       if (folded) {
-        for (const Polygon& q : TentFoldedImages(p)) f.spectra.emplace_back(q, radius, tabulate);
+        for (const Polygon& q : TentFoldedHalf(p)) f.spectra.emplace_back(q, radius, tabulate);
       } else {
         f.spectra.emplace_back(p, radius, tabulate);
       }
@@ -143,7 +144,7 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
       if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
     } else {
       for (size_t k = 0; k < edges; ++k) {
-        edge_sum[k] += UnionEnergy(&parts[k * family.parts], family.parts, h.a, h.b);
+        edge_sum[k] += SymmetricUnionEnergy(&parts[k * family.parts], family.parts, h.a, h.b);
       }
       const double c = SquareCosine(h.a) * SquareCosine(h.b);
       corner += c * c;

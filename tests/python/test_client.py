@@ -142,6 +142,20 @@ class ServerTest(unittest.TestCase):
         self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
         self.assertIn("power of two", e.exception.message)
 
+    def test_tent_lattice_construction(self):
+        s = self.client.get_set(64, 30, construction="tent-lattice", realization=1)
+        self.assertEqual(s.metadata.construction, "tent-lattice")
+        self.assertEqual(s.metadata.key.profile, "tent-lattice-v1-w2")
+        self.assertTrue(np.all((s.points >= 0) & (s.points < 1)))
+        # Realizations are independent randomizations, each unbiased: the
+        # mean of a non-periodic smooth function over them is its integral.
+        sets = self.client.get_realizations(64, 30, 48, construction="tent-lattice")
+        self.assertEqual(sets.shape, (48, 64, 2))
+        np.testing.assert_array_equal(sets[1], s.points)
+        q = np.mean(np.exp(sets[:, :, 0]) * sets[:, :, 1] ** 2, axis=1)
+        self.assertGreater(np.std(q), 0)
+        self.assertLess(abs(q.mean() - (np.e - 1) / 3), 4 * np.std(q) / np.sqrt(len(q)))
+
     def test_baseline_samples(self):
         a = self.client.samples("owen-sobol", 64, seed=3)
         self.assertEqual(a.shape, (64, 2))
