@@ -20,7 +20,7 @@ from ratios import ratio_text
 # The samplers that read an estimated direction pay for its pre-pass; a
 # "+reuse" or "+unbiased" variant folds the pre-pass into its estimate and
 # pays the same.
-ESTIMATED = {"aligned", "aligned-lattice", "pmj02bn-sheared"}
+ESTIMATED = {"aligned", "aligned-lattice", "aligned-tent-lattice", "pmj02bn-sheared"}
 
 
 def estimated(sampler):

@@ -136,16 +136,25 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
   double corner = 0.0;
   std::vector<const IntegerIndicatorSpectrum*> parts(family.spectra.size());
   for (size_t k = 0; k < parts.size(); ++k) parts[k] = &family.spectra[k];
+  // Edge by edge over the dual points, so that one edge's tables stay in
+  // cache (a folded family's tables take tens of MB; each sum adds its
+  // terms in the dual's order either way).
+  for (size_t k = 0; k < edges; ++k) {
+    double sum = 0.0;
+    if (family.parts == 1) {
+      for (const Frequency& h : dual) sum += family.spectra[k].Energy(h.a, h.b);
+    } else {
+      const IntegerIndicatorSpectrum* const* edge = &parts[k * family.parts];
+      for (const Frequency& h : dual) sum += SymmetricUnionEnergy(edge, family.parts, h.a, h.b);
+    }
+    edge_sum[k] = sum;
+  }
   for (const Frequency& h : dual) {
     const double hx = h.a, hy = h.b;
     if (family.parts == 1) {
-      for (size_t k = 0; k < edges; ++k) edge_sum[k] += family.spectra[k].Energy(h.a, h.b);
       // (x - 1/2)(y - 1/2): coefficients i/(2 pi a) * i/(2 pi b) off the axes.
       if (h.a != 0 && h.b != 0) corner += 1.0 / (16.0 * std::pow(kPi, 4) * hx * hx * hy * hy);
     } else {
-      for (size_t k = 0; k < edges; ++k) {
-        edge_sum[k] += SymmetricUnionEnergy(&parts[k * family.parts], family.parts, h.a, h.b);
-      }
       const double c = SquareCosine(h.a) * SquareCosine(h.b);
       corner += c * c;
     }
