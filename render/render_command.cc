@@ -99,8 +99,8 @@ StatusOr<RenderSummary> RunRender(
     c.sets = &table;
     char line[160];
     std::snprintf(line, sizeof line,
-                  "%zu one-direction and %zu two-direction lattices (%zu searches, one per canonical key) in %.2f s",
-                  st.one, st.two, st.searched, st.seconds);
+                  "%zu one-direction and %zu two-direction %slattices (%zu searches, one per canonical key) in %.2f s",
+                  st.one, st.two, tent ? "tent-folded " : "", st.searched, st.seconds);
     summary.note = line;
   }
   if (r.sampler == "screen-space-rank1") {

@@ -65,9 +65,8 @@ struct Family {
 
 // The edges scored: for each direction, 2 steps + 1 normals across the
 // window, each through `offsets` of the kEdgeOffsets (kFoldedEdgeOffsets);
-// the polygons alone
-// (a key's score divides by their count, which a cached search needs without
-// the tables).
+// the polygons alone (a key's score divides by their count, which a cached
+// search needs without the tables).
 std::vector<std::vector<Polygon>> ScoredPolygons(const std::vector<double>& directions_deg,
                                                  double window_deg, int steps, size_t offsets, bool folded) {
   std::vector<std::vector<Polygon>> out;

@@ -49,9 +49,14 @@ struct AlignedLatticeOptions {
   // points of f's cosine coefficients squared,
   //   c(h) = int f(x, y) cos(pi h_x x) cos(pi h_y y),
   // which for a step edge is the spectrum of the edge folded into the four
-  // quadrants (directions d and 180 - d); the corner term is x^2 y^2's, whose
-  // coefficients 2 (-1)^k / (pi k)^2 (1/3 at k = 0) in each coordinate lie on
-  // the hyperbolic cross, as a smooth function's do after the fold.
+  // quadrants (directions d and 180 - d; FoldedIndicatorSpectrum). The
+  // folded family samples the window at twice as many normals, through six
+  // offsets, and scores each direction by the log of its edges' mean
+  // variance (the folded variance has narrow resonances a mean of logs
+  // would let through); the corner term is x^2 y^2's, whose coefficients
+  // 2 (-1)^k / (pi k)^2 (1/3 at k = 0) in each coordinate lie on the
+  // hyperbolic cross, as a smooth function's do after the fold, floored at
+  // 1e-3 / N^3. Use window_deg = kTentLatticeWindowDeg.
   bool folded = false;
   int finalists = 32;
   int threads = 1;  // 0: all cores; the choice does not depend on it
