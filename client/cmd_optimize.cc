@@ -83,7 +83,7 @@ int WriteConstructed(const OptimizeOptions& o, const std::vector<PointSet>& poin
 // before the fold).
 int RunLattice(const OptimizeOptions& o) {
   const bool folded = o.construction == "tent-lattice";
-  const double window = o.window.value_or(folded ? kTentLatticeWindowDeg : 1.0);
+  const double window = o.window.value_or(DefaultLatticeWindowDeg(folded));
   AlignedLatticeOptions lattice;
   lattice.folded = folded;
   lattice.window_deg = window;

@@ -5,6 +5,7 @@
 
 #include <alignset/pixel_sampler.h>
 
+#include "core/optimize/aligned_lattice.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/sampling/rank1_lattice.h"
 #include "core/sampling/samplers.h"
@@ -134,17 +135,9 @@ class Aligned : public PixelSampler {
     // The client library's per-pixel recipe (<alignset/pixel_sampler.h>).
     const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
     double sum = 0.0;
-    if (sets_->folded) {
-      auto tent = [](double u) { return 1.0 - std::abs(2.0 * u - 1.0); };
-      for (const Point2& p : *set) {
-        const Point2 q = ShiftPoint(p, s);
-        sum += f.Eval({tent(q.x), tent(q.y)});
-      }
-    } else {
-      for (const Point2& p : *set) {
-        const Point2 q = ShiftPoint(p, s);
-        sum += f.Eval({q.x, q.y});
-      }
+    for (const Point2& p : *set) {
+      const Point2 q = ShiftPoint(p, s);
+      sum += sets_->folded ? f.Eval({TentFold(q.x), TentFold(q.y)}) : f.Eval({q.x, q.y});
     }
     return sum / static_cast<double>(set->size());
   }

@@ -92,7 +92,7 @@ StatusOr<RenderSummary> RunRender(
     const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
     auto built = AlignedLatticeTable(
         r.spp, {estimated_dirs ? &estimated : &exact}, c.policy,
-        r.lattice_window_deg.value_or(tent ? kTentLatticeWindowDeg : 1.0), r.threads, &st,
+        r.lattice_window_deg.value_or(DefaultLatticeWindowDeg(tent)), r.threads, &st,
         [&](double done, double total) { progress("lattices", done, total, ""); }, tent);
     if (!built.ok()) return built.status();
     table = std::move(*built);

@@ -507,8 +507,7 @@ int Main(int argc, char** argv) {
       for (const SceneData& d : scenes) {
         for (const Variant& v : now) {
           if (!(folded ? IsTentLattice(v) : IsLattice(v))) continue;
-          const bool exact = v.sampler == "aligned-lattice-exact" || v.sampler == "aligned-tent-lattice-exact";
-          maps.push_back(exact ? &d.exact : &d.estimated);
+          maps.push_back(v.sampler.ends_with("-exact") ? &d.exact : &d.estimated);
           policy = v.policy;
         }
       }

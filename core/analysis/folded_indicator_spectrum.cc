@@ -30,8 +30,7 @@ FoldedIndicatorSpectrum::FoldedIndicatorSpectrum(const Polygon& polygon, int rad
 }
 
 double FoldedIndicatorSpectrum::Energy(int hx, int hy) const {
-  const IntegerIndicatorSpectrum* p[2] = {&parts_[0], &parts_[1]};
-  return SymmetricUnionEnergy(p, 2, hx, hy);
+  return SymmetricUnionEnergy(parts_.data(), parts_.size(), hx, hy);
 }
 
 }  // namespace alignset

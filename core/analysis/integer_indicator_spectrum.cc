@@ -134,19 +134,9 @@ double IntegerIndicatorSpectrum::Energy(int hx, int hy) const {
   return (s.real() * s.real() + s.imag() * s.imag()) / (4.0 * kPi * kPi * h2 * h2);
 }
 
-double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, int hx, int hy) {
-  double sr = 0.0, si = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    const std::complex<double> s = parts[i]->Sum(hx, hy);
-    sr += s.real(), si += s.imag();
-  }
-  const double h2 = static_cast<double>(hx) * hx + static_cast<double>(hy) * hy;
-  return (sr * sr + si * si) / (4.0 * kPi * kPi * h2 * h2);
-}
-
-double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* const* half, size_t count, int hx, int hy) {
+double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* half, size_t count, int hx, int hy) {
   double si = 0.0;
-  for (size_t i = 0; i < count; ++i) si += half[i]->Sum(hx, hy).imag();
+  for (size_t i = 0; i < count; ++i) si += half[i].Sum(hx, hy).imag();
   const double h2 = static_cast<double>(hx) * hx + static_cast<double>(hy) * hy;
   return (si * si) / (kPi * kPi * h2 * h2);
 }

@@ -61,13 +61,11 @@ class IntegerIndicatorSpectrum {
   std::vector<Edge> edges_;
 };
 
-// The energy |f^(h)|^2 of the indicator of a union of polygons with
-// disjoint interiors, each given by its spectrum. h != 0.
-double UnionEnergy(const IntegerIndicatorSpectrum* const* parts, size_t count, int hx, int hy);
-// The same for a union symmetric under the point reflection u -> (1, 1) - u
-// given by the parts of one half: the other half's coefficients are their
-// conjugates, so f^(h) = 2 Re(sum of the half's f^(h)) = -2 Im(sum of S) /
-// (2 pi |h|^2). h != 0.
-double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* const* half, size_t count, int hx, int hy);
+// The energy |f^(h)|^2 of the indicator of a union of polygons with disjoint
+// interiors, symmetric under the point reflection u -> (1, 1) - u, given by
+// the spectra of one half's polygons (half[0 .. count)): the other half's
+// coefficients are their conjugates, so f^(h) = 2 Re(sum of the half's
+// f^(h)) = -2 Im(sum of their Sums) / (2 pi |h|^2). h != 0.
+double SymmetricUnionEnergy(const IntegerIndicatorSpectrum* half, size_t count, int hx, int hy);
 
 }  // namespace alignset

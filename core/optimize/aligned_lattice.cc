@@ -133,8 +133,6 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
   const size_t edges = family.Edges();
   std::vector<double> edge_sum(edges, 0.0);
   double corner = 0.0;
-  std::vector<const IntegerIndicatorSpectrum*> parts(family.spectra.size());
-  for (size_t k = 0; k < parts.size(); ++k) parts[k] = &family.spectra[k];
   // Edge by edge over the dual points, so that one edge's tables stay in
   // cache (a folded family's tables take tens of MB; each sum adds its
   // terms in the dual's order either way).
@@ -143,7 +141,7 @@ Terms ScoreTerms(uint32_t n, uint32_t g, int radius, const Family& family) {
     if (family.parts == 1) {
       for (const Frequency& h : dual) sum += family.spectra[k].Energy(h.a, h.b);
     } else {
-      const IntegerIndicatorSpectrum* const* edge = &parts[k * family.parts];
+      const IntegerIndicatorSpectrum* edge = &family.spectra[k * family.parts];
       for (const Frequency& h : dual) sum += SymmetricUnionEnergy(edge, family.parts, h.a, h.b);
     }
     edge_sum[k] = sum;
@@ -488,7 +486,6 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
   Pcg32 rng(HashCombine(seed, 0x74656e74ULL));
   const double sx = rng.NextDouble(), sy = rng.NextDouble();
-  auto tent = [](double u) { return 1.0 - std::abs(2.0 * u - 1.0); };
   PointSet points(n);
   const double inv = 1.0 / n;
   for (uint64_t i = 0; i < n; ++i) {
@@ -496,7 +493,7 @@ PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
     x -= std::floor(x), y -= std::floor(y);
     // The fold of u in [0, 1) lies in [0, 1]; 1 itself (u = 1/2 exactly) is
     // kept inside the half-open square the sets live in.
-    points[i] = {std::min(tent(x), std::nextafter(1.0, 0.0)), std::min(tent(y), std::nextafter(1.0, 0.0))};
+    points[i] = {std::min(TentFold(x), std::nextafter(1.0, 0.0)), std::min(TentFold(y), std::nextafter(1.0, 0.0))};
   }
   return points;
 }

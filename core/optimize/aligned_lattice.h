@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -123,6 +124,17 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 // the realizations are unbiased for every integrand (the mean over s is the
 // integral: phi maps the uniform measure to itself).
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed);
+
+// The tent phi(u) = 1 - |2 u - 1| that folds [0, 1) onto [0, 1]: what
+// TentLatticePoints applies after its shift, and a renderer after each
+// pixel's shift of the unfolded lattice.
+inline double TentFold(double u) { return 1.0 - std::abs(2.0 * u - 1.0); }
+
+// The window a caller that names none uses: 1 degree, kTentLatticeWindowDeg
+// folded.
+inline double DefaultLatticeWindowDeg(bool folded) {
+  return folded ? kTentLatticeWindowDeg : AlignedLatticeOptions{}.window_deg;
+}
 
 // ChooseAlignedLatticeGenerator, then Rank1LatticePoints (TentLatticePoints
 // with options.folded).
