@@ -27,56 +27,49 @@ WORK="$BUILD_DIR/construction-eval"
 mkdir -p "$WORK"
 : > "$OUT"
 has() { [[ " $CONSTRUCTIONS " == *" $1 "* ]]; }
+# make_args TAG SUFFIX NETS DIR...: the sets of every construction measured,
+# for N = $n and the directions DIR, in files named by TAG (a set's file
+# NAME$TAG[_SEED].txt), labelled NAME$SUFFIX; NETS net realizations. Sets
+# `args`, the evaluator's labels and files.
+make_args() {
+  local tag=$1 suffix=$2 nets=$3
+  shift 3
+  local dirs=()
+  for d in "$@"; do dirs+=(--dir "$d"); done
+  args=()
+  if has lattice; then
+    for s in 1 2 3 4; do
+      "$CLI" optimize -n "$n" "${dirs[@]}" --construction lattice -s "$s" -o "$WORK/lat${tag}_$s.txt" >/dev/null
+    done
+    args+=(--label "lattice$suffix" "$WORK"/lat${tag}_*.txt)
+  fi
+  if has tent-lattice; then
+    "$CLI" optimize -n "$n" "${dirs[@]}" --construction tent-lattice -m 64 -o "$WORK/tent$tag.txt" >/dev/null
+    args+=(--randomized "tent-lattice$suffix" "$WORK/tent$tag.txt")
+  fi
+  if has net; then
+    for s in $(seq 1 "$nets"); do
+      [ -f "$WORK/net${tag}_$s.txt" ] || "$CLI" optimize -n "$n" "${dirs[@]}" --construction net -s "$s" -o "$WORK/net${tag}_$s.txt" >/dev/null
+    done
+    args+=(--label "net$suffix" "$WORK"/net${tag}_*.txt)
+  fi
+  if has optimized; then
+    [ -f "$WORK/opt$tag.txt" ] || "$CLI" optimize -n "$n" "${dirs[@]}" -s 1 -o "$WORK/opt$tag.txt" >/dev/null 2>&1
+    args+=(--label "optimized$suffix" "$WORK/opt$tag.txt")
+  fi
+}
 for n in ${N//,/ }; do
   for s in $(seq 1 16); do
     [ -f "$WORK/os_${n}_$s.txt" ] || "$CLI" sample owen-sobol -n "$n" -s "$s" -o "$WORK/os_${n}_$s.txt" >/dev/null
   done
   for t in ${THETA//,/ }; do
-    args=(--label owen-sobol "$WORK"/os_${n}_*.txt)
-    if has lattice; then
-      for s in 1 2 3 4; do
-        "$CLI" optimize -n "$n" --dir "$t" --construction lattice -s "$s" -o "$WORK/lat_${n}_${t}_$s.txt" >/dev/null
-      done
-      args+=(--label lattice "$WORK"/lat_${n}_${t}_*.txt)
-    fi
-    if has tent-lattice; then
-      "$CLI" optimize -n "$n" --dir "$t" --construction tent-lattice -m 64 -o "$WORK/tent_${n}_${t}.txt" >/dev/null
-      args+=(--randomized tent-lattice "$WORK/tent_${n}_${t}.txt")
-    fi
-    if has net; then
-      for s in 1 2; do
-        [ -f "$WORK/net_${n}_${t}_$s.txt" ] || "$CLI" optimize -n "$n" --dir "$t" --construction net -s "$s" -o "$WORK/net_${n}_${t}_$s.txt" >/dev/null
-      done
-      args+=(--label net "$WORK"/net_${n}_${t}_*.txt)
-    fi
-    if has optimized; then
-      [ -f "$WORK/opt_${n}_${t}.txt" ] || "$CLI" optimize -n "$n" --dir "$t" -s 1 -o "$WORK/opt_${n}_${t}.txt" >/dev/null 2>&1
-      args+=(--label optimized "$WORK/opt_${n}_${t}.txt")
-    fi
+    make_args "_${n}_$t" "" 2 "$t"
     /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
-      "${args[@]}" --out "$OUT.part" | tail -n +2
+      --label owen-sobol "$WORK"/os_${n}_*.txt "${args[@]}" --out "$OUT.part" | tail -n +2
   done
   for pair in ${PAIRS//,/ }; do
     a="${pair%%:*}"; b="${pair##*:}"
-    args=()
-    if has lattice; then
-      for s in 1 2 3 4; do
-        "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction lattice -s "$s" -o "$WORK/lat2_${n}_${a}_${b}_$s.txt" >/dev/null
-      done
-      args+=(--label "lattice-2dir($a,$b)" "$WORK"/lat2_${n}_${a}_${b}_*.txt)
-    fi
-    if has tent-lattice; then
-      "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction tent-lattice -m 64 -o "$WORK/tent2_${n}_${a}_${b}.txt" >/dev/null
-      args+=(--randomized "tent-lattice-2dir($a,$b)" "$WORK/tent2_${n}_${a}_${b}.txt")
-    fi
-    if has net; then
-      [ -f "$WORK/net2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" --construction net -s 1 -o "$WORK/net2_${n}_${a}_${b}.txt" >/dev/null
-      args+=(--label "net-2dir($a,$b)" "$WORK/net2_${n}_${a}_${b}.txt")
-    fi
-    if has optimized; then
-      [ -f "$WORK/opt2_${n}_${a}_${b}.txt" ] || "$CLI" optimize -n "$n" --dir "$a" --dir "$b" -s 1 -o "$WORK/opt2_${n}_${a}_${b}.txt" >/dev/null 2>&1
-      args+=(--label "optimized-2dir($a,$b)" "$WORK/opt2_${n}_${a}_${b}.txt")
-    fi
+    make_args "2_${n}_${a}_$b" "-2dir($a,$b)" 1 "$a" "$b"
     for t in "$a" "$b"; do
       /usr/bin/python3 bench/construction_eval.py --theta "$t" --shifts "$SHIFTS" --gaussians "$GAUSSIANS" \
         --label owen-sobol "$WORK"/os_${n}_*.txt "${args[@]}" --out "$OUT.part" | tail -n +2
