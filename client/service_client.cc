@@ -167,6 +167,26 @@ StatusOr<PointSet> DecodePoints(const std::string& bytes, uint32_t expected_n) {
   return pts;
 }
 
+namespace {
+
+// The longest timeout a call takes, about 31 years: a deadline is a clock
+// reading in integer nanoseconds, which a larger one would overflow (1e12 s
+// is past the year 2262); whoever means "no deadline" says 0.
+constexpr double kMaxTimeoutSeconds = 1e9;
+constexpr char kTimeoutRange[] = "a finite number of seconds in [0, 1e9]";
+
+bool ValidTimeout(double s) { return std::isfinite(s) && s >= 0 && s <= kMaxTimeoutSeconds; }
+
+Status CheckCallOptions(const CallOptions& call) {
+  if (call.timeout_seconds && !ValidTimeout(*call.timeout_seconds)) {
+    return Status::InvalidArgument(std::string("call timeout must be ") + kTimeoutRange +
+                                   " (0: none)");
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
 constexpr char kRetryServiceConfig[] = R"({
   "methodConfig": [{
     "name": [{"service": "alignset.v1.AlignSet"}, {"service": "grpc.health.v1.Health"}],
@@ -205,6 +225,8 @@ struct ServiceClient::Impl {
     }
     return d;
   }
+  // s is in [0, kMaxTimeoutSeconds] (Connect and CheckCallOptions refuse
+  // the rest): a larger one would overflow the clock's integer ticks.
   static Clock::duration Seconds(double s) {
     return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
   }
@@ -229,6 +251,9 @@ struct ServiceClient::Impl {
   // UNAVAILABLE the server itself sent (the channel still ready) is final.
   template <class Rpc>
   grpc::Status Unary(const CallOptions& call, Rpc&& rpc) const {
+    if (Status bad = CheckCallOptions(call); !bad.ok()) {
+      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, bad.message());
+    }
     const Deadlines d = DeadlinesFrom(Clock::now(), true, call);
     for (;;) {
       grpc::ClientContext ctx;
@@ -264,8 +289,11 @@ ServiceClient::~ServiceClient() = default;
 
 StatusOr<std::unique_ptr<ServiceClient>> ServiceClient::Connect(const ConnectOptions& options) {
   if (options.address.empty()) return Status::InvalidArgument("empty server address");
-  if (!(std::isfinite(options.connect_timeout_seconds) && options.connect_timeout_seconds >= 0)) {
-    return Status::InvalidArgument("connect timeout must be a finite number of seconds >= 0");
+  if (!ValidTimeout(options.connect_timeout_seconds)) {
+    return Status::InvalidArgument(std::string("connect timeout must be ") + kTimeoutRange);
+  }
+  if (!ValidTimeout(options.timeout_seconds)) {
+    return Status::InvalidArgument(std::string("timeout must be ") + kTimeoutRange + " (0: none)");
   }
   std::shared_ptr<grpc::ChannelCredentials> creds = grpc::InsecureChannelCredentials();
   if (!options.tls_ca_file.empty()) {
@@ -454,6 +482,7 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
 StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
     const SetRequest& request, const std::function<void(const WatchUpdate&)>& on_update,
     const CallOptions& call) {
+  if (Status bad = CheckCallOptions(call); !bad.ok()) return bad;
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, call);
   auto reader = impl_->stub->WatchAlignedSet(&ctx, MakeRequest(request));
@@ -513,6 +542,7 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_realizations(spec.realizations);
   req.set_steps_per_degree(spec.steps_per_degree);
   req.set_construction(spec.construction);
+  if (Status bad = CheckCallOptions(call); !bad.ok()) return bad;
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, call);
   auto reader = impl_->stub->Precompute(&ctx, req);

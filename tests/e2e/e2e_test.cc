@@ -182,8 +182,10 @@ TEST_F(E2eTest, ACallSentWhileTheServerRestartsWaitsForItAndIsServed) {
   EXPECT_EQ(again->raw, first->raw);
 }
 
-TEST_F(E2eTest, ANegativeOrNonFiniteConnectTimeoutIsRefused) {
-  for (double t : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+TEST_F(E2eTest, ANegativeNonFiniteOrOverlongTimeoutIsRefused) {
+  // 1e12 s from now is past what the clock's nanoseconds hold: refused, not
+  // wrapped into a deadline in the past.
+  for (double t : {-1.0, std::nan(""), std::numeric_limits<double>::infinity(), 1e12}) {
     ConnectOptions o;
     o.address = "127.0.0.1:1";
     o.connect_timeout_seconds = t;
@@ -191,7 +193,37 @@ TEST_F(E2eTest, ANegativeOrNonFiniteConnectTimeoutIsRefused) {
     ASSERT_FALSE(c.ok()) << t;
     EXPECT_EQ(c.status().code(), Status::Code::kInvalidArgument);
     EXPECT_NE(c.status().message().find("connect timeout"), std::string::npos);
+    ConnectOptions unary;
+    unary.address = "127.0.0.1:1";
+    unary.timeout_seconds = t;
+    auto u = ServiceClient::Connect(unary);
+    ASSERT_FALSE(u.ok()) << t;
+    EXPECT_EQ(u.status().code(), Status::Code::kInvalidArgument);
+    EXPECT_NE(u.status().message().find("timeout must be"), std::string::npos);
   }
+  // Per call: refused before anything is sent (nothing listens on port 1),
+  // unary and streaming alike; the limit itself is a valid timeout.
+  ConnectOptions o;
+  o.address = "127.0.0.1:1";
+  o.connect_timeout_seconds = 0;
+  auto c = ServiceClient::Connect(o);
+  ASSERT_TRUE(c.ok()) << c.status().message();
+  for (double t : {-1.0, std::nan(""), 1e12}) {
+    CallOptions call;
+    call.timeout_seconds = t;
+    auto got = (*c)->GetAlignedSet(SetRequest{64, {30.0}, 0}, call);
+    ASSERT_FALSE(got.ok()) << t;
+    EXPECT_EQ(got.status().code(), Status::Code::kInvalidArgument) << got.status().message();
+    EXPECT_NE(got.status().message().find("call timeout"), std::string::npos);
+    auto watched = (*c)->WatchAlignedSet(SetRequest{64, {30.0}, 0}, {}, call);
+    ASSERT_FALSE(watched.ok()) << t;
+    EXPECT_EQ(watched.status().code(), Status::Code::kInvalidArgument);
+  }
+  CallOptions longest;
+  longest.timeout_seconds = 1e9;
+  auto got = (*c)->GetAlignedSet(SetRequest{64, {30.0}, 0}, longest);
+  ASSERT_FALSE(got.ok());
+  EXPECT_EQ(got.status().code(), Status::Code::kUnavailable) << got.status().message();
 }
 
 void ExpectStatus(const grpc::Status& s, grpc::StatusCode code, const std::string& fragment) {

@@ -37,7 +37,9 @@ struct ConnectOptions {
   std::string token;
   // Default deadline of each unary call in seconds (CallOptions overrides it
   // per call); 0: none (GetAlignedSet then waits for as long as the
-  // optimization takes).
+  // optimization takes). This and the two below are at most 1e9 s (a clock
+  // reading past that overflows); Connect or the call refuses others with
+  // INVALID_ARGUMENT.
   double timeout_seconds = 0.0;
   // How long a call waits for a connection to the server (reconnecting
   // every 0.1 to 1 s), and a unary call that failed because its connection
