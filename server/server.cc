@@ -1,5 +1,6 @@
 #include "server/server.h"
 
+#include <grpc/grpc.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 #include <spdlog/spdlog.h>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "server/active_calls.h"
 #include "server/fill_client.h"
 #include "server/integrity_watch.h"
 #include "server/listen_address.h"
@@ -69,6 +71,9 @@ struct ServerInstance::Impl {
   std::unique_ptr<AlignSetService> service;
   std::unique_ptr<ReflectionService> reflection;
   std::unique_ptr<MetricsHttpServer> metrics_http;
+  // Declared before the server, so destroyed after it: its calls' counters
+  // point here.
+  std::unique_ptr<ActiveCalls> active_calls = std::make_unique<ActiveCalls>();
   std::unique_ptr<grpc::Server> server;
   int port = 0;
   bool stopped = false;
@@ -174,6 +179,11 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   builder.AddListeningPort(config.listen, creds, &impl->port);
   builder.RegisterService(impl->service.get());
   builder.RegisterService(impl->reflection.get());
+  {
+    std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> counters;
+    counters.push_back(impl->active_calls->InterceptorFactory());
+    builder.experimental().SetInterceptorCreators(std::move(counters));
+  }
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_request_bytes));
   builder.SetMaxSendMessageSize(-1);
   impl->server = builder.BuildAndStart();
@@ -239,9 +249,22 @@ void ServerInstance::Shutdown(double grace_seconds) {
   impl_->server->GetHealthCheckService()->SetServingStatus(false);
   // Waiting handlers see their jobs end and return; then the RPC layer drains.
   impl_->scheduler->BeginShutdown();
-  const auto deadline = std::chrono::system_clock::now() +
-                        std::chrono::milliseconds(static_cast<int64_t>(grace_seconds * 1000));
-  impl_->server->Shutdown(deadline);
+  const auto grace = std::chrono::milliseconds(static_cast<int64_t>(grace_seconds * 1000));
+  const auto deadline = std::chrono::system_clock::now() + grace;
+  const auto steady_deadline = std::chrono::steady_clock::now() + grace;
+  // gRPC stops taking calls as soon as its shutdown begins and gives those
+  // in flight until the deadline, then waits there for the clients'
+  // connections to close, idle ones too (ActiveCalls says why): once the
+  // calls are done, close what is left. A call counted as none were running
+  // may have slipped in before gRPC's shutdown began: the check repeats
+  // after a pause longer than that takes.
+  std::thread stopper([&] { impl_->server->Shutdown(deadline); });
+  while (impl_->active_calls->WaitUntilNone(steady_deadline)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (impl_->active_calls->count() == 0) break;
+  }
+  grpc_server_cancel_all_calls(impl_->server->c_server());
+  stopper.join();
   impl_->server->Wait();
   impl_->scheduler->Shutdown();  // joins workers: a write in progress completes
   impl_->metrics_http.reset();  // before the service its scrapes read
