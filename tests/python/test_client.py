@@ -244,6 +244,15 @@ class ServerTest(unittest.TestCase):
             with self.assertRaises(ValueError):
                 alignset.Client(self.address, connect_timeout=bad)
 
+    def test_a_bad_call_timeout_is_refused_before_anything_is_sent(self):
+        for bad in (-1, float("nan"), float("inf"), "2"):
+            with self.assertRaises(ValueError):
+                alignset.Client(self.address, timeout=bad)
+        with alignset.Client("127.0.0.1:1", connect_timeout=0) as down:
+            for bad in (-1, float("nan"), float("inf")):
+                with self.assertRaises(ValueError):
+                    down.get(64, 30, timeout=bad)
+
     def test_an_unreachable_server_is_unavailable(self):
         with alignset.Client("127.0.0.1:1", timeout=5) as down:
             with self.assertRaises(alignset.AlignSetError) as e:

@@ -71,6 +71,17 @@ def _aligned(response):
 _CODES = {c.value[0]: c for c in grpc.StatusCode}
 
 
+def _valid_seconds(t):
+    return (isinstance(t, (int, float)) and not isinstance(t, bool) and math.isfinite(t)
+            and t >= 0)
+
+
+def _check_timeout(timeout):
+    """A call's deadline: None (none) or a finite number of seconds >= 0."""
+    if timeout is not None and not _valid_seconds(timeout):
+        raise ValueError("timeout must be None or a finite number of seconds >= 0")
+
+
 class Client:
     """A connection to alignset-server.
 
@@ -84,9 +95,9 @@ class Client:
 
     def __init__(self, server=DEFAULT_SERVER, timeout=None, token=None, root_certificates=None,
                  connect_timeout=2.0):
-        if not (isinstance(connect_timeout, (int, float)) and math.isfinite(connect_timeout)
-                and connect_timeout >= 0):
+        if not _valid_seconds(connect_timeout):
             raise ValueError("connect_timeout must be a finite number of seconds >= 0")
+        _check_timeout(timeout)
         # Reconnect soon after a failed attempt (gRPC's default waits a second).
         options = [("grpc.max_receive_message_length", -1),
                    ("grpc.initial_reconnect_backoff_ms", 100),
@@ -145,6 +156,7 @@ class Client:
         self.close()
 
     def _call(self, method, request, timeout):
+        _check_timeout(timeout)
         timeout = self._timeout if timeout is None else timeout
         start = time.monotonic()
         connect_by = start + (self._connect_timeout if timeout is None
