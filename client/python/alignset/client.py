@@ -147,6 +147,16 @@ class Client:
 
     def close(self):
         self._channel.unsubscribe(self._on_state)
+        # gRPC Python polls the connectivity on a thread of its own, every
+        # 0.2 s while anyone listens or a connection was asked for, and raises
+        # "Channel closed!" there if the channel closes under it (grpc issue
+        # 18995): a traceback on stderr after every script. Let it see that
+        # nobody listens first. Its state is private: where it is missing the
+        # close goes ahead.
+        poller = getattr(self._channel, "_connectivity_state", None)
+        until = time.monotonic() + 1.0
+        while getattr(poller, "polling", False) and time.monotonic() < until:
+            time.sleep(0.01)
         self._channel.close()
 
     def __enter__(self):
