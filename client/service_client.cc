@@ -523,6 +523,7 @@ StatusOr<AlignedSet> ServiceClient::WatchAlignedSet(
 StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
     const PrecomputeSpec& spec, const std::function<void(const PrecomputeUpdate&)>& on_update,
     const CallOptions& call) {
+  if (Status bad = CheckCallOptions(call); !bad.ok()) return bad;
   v1::PrecomputeRequest req;
   for (uint32_t n : spec.n) req.add_n(n);
   switch (spec.space) {
@@ -542,7 +543,6 @@ StatusOr<PrecomputeUpdate> ServiceClient::Precompute(
   req.set_realizations(spec.realizations);
   req.set_steps_per_degree(spec.steps_per_degree);
   req.set_construction(spec.construction);
-  if (Status bad = CheckCallOptions(call); !bad.ok()) return bad;
   grpc::ClientContext ctx;
   impl_->Prepare(&ctx, call);
   auto reader = impl_->stub->Precompute(&ctx, req);

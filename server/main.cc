@@ -55,5 +55,13 @@ int main(int argc, char** argv) {
   sigwait(&stop, &sig);
   spdlog::info("received {}", sig == SIGTERM ? "SIGTERM" : "SIGINT");
   (*server)->Shutdown(config->shutdown_grace_seconds);
-  return 0;
+  // Everything that must reach the disk has: the workers are joined and the
+  // cache closed (a WAL checkpoint). gRPC's own teardown at exit joins an
+  // executor thread that can sit in a poll of up to 10 s after connections
+  // were closed under a transfer that had just finished (a server stopped
+  // in 1 s exited 11 s after SIGTERM in 4 of 10 runs of the e2e test), so
+  // the process leaves without it.
+  spdlog::shutdown();
+  std::fflush(nullptr);
+  std::_Exit(0);
 }

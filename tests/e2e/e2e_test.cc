@@ -154,7 +154,8 @@ TEST_F(E2eTest, ThirtyTwoConcurrentRequestsRunExactlyOneOptimization) {
 TEST_F(E2eTest, AStoppingServerFinishesTheCallsInFlightAndDoesNotWaitForIdleClients) {
   // gRPC's shutdown also waits for the clients' connections to close, and a
   // C++ client keeps an idle one open: before the server closed them once
-  // its calls were done, this server took its whole grace (60 s) to stop.
+  // its calls were done, this server took its whole grace (60 s) to stop;
+  // and then up to 10 s more at exit in gRPC's own teardown.
   // The call in flight is a large pmj02bn set (seconds to make; running
   // optimizations are not what the grace is for: they end at their next
   // time slice with UNAVAILABLE, for the client to retry elsewhere).
@@ -164,6 +165,7 @@ TEST_F(E2eTest, AStoppingServerFinishesTheCallsInFlightAndDoesNotWaitForIdleClie
   ConnectOptions separate;
   separate.separate_connection = true;
   auto busy = Client(separate);
+  ASSERT_TRUE(busy->GetAlignedSet(64, {30.0}).ok());  // connected: the call below goes out at once
   StatusOr<PointSet> running = Status::Internal("not run");
   const auto sent = std::chrono::steady_clock::now();
   std::thread call([&] { running = busy->GetSamples("pmj02bn", 262144, 1, std::nullopt); });
@@ -174,7 +176,9 @@ TEST_F(E2eTest, AStoppingServerFinishesTheCallsInFlightAndDoesNotWaitForIdleClie
   EXPECT_EQ(code, 0);
   ASSERT_TRUE(running.ok()) << running.status().message();  // given its grace
   EXPECT_EQ(running->size(), 262144u);
-  EXPECT_LT(stopped, 30.0);
+  // Well under the grace, and under the 10 s poll gRPC's teardown at exit
+  // could add (alignset-server's main).
+  EXPECT_LT(stopped, 10.0);
 }
 
 TEST_F(E2eTest, ACallSentWhileTheServerRestartsWaitsForItAndIsServed) {
