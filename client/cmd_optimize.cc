@@ -95,8 +95,15 @@ int RunLattice(const OptimizeOptions& o) {
     }
   }
   const auto t0 = std::chrono::steady_clock::now();
-  auto choice = ChooseAlignedLatticeGenerator(n, o.dirs, lattice);
-  if (!choice.ok()) return Usage(choice.status());
+  Progress progress(folded ? "tent-lattice search" : "lattice search");
+  // In percent: the search reports passes (two for one direction), each
+  // with its fractions.
+  auto choices = ChooseAlignedLatticeGenerators(n, {o.dirs}, lattice, [&](double done, double total) {
+    progress.Update(std::floor(100.0 * done / total), 100.0, "");
+  });
+  if (!choices.ok()) return Usage(choices.status());
+  progress.Finish("");
+  const AlignedLatticeChoice* choice = &choices->front();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const std::string dir_text = DirectionsText(o.dirs);

@@ -203,17 +203,30 @@ double Quantized(double score) { return std::ldexp(std::nearbyint(std::ldexp(sco
 // to start); each result depends on its i alone, so nothing depends on the
 // thread count.
 template <class Fn>
-void ParallelOver(size_t count, int threads, size_t grain, const Fn& fn) {
+// `passed(fraction)`, when given, is called on the calling thread only (a
+// progress display need not be thread-safe), each time another 1/200 of the
+// items is done, as far as that thread sees.
+void ParallelOver(size_t count, int threads, size_t grain, const Fn& fn,
+                  const std::function<void(double fraction)>& passed = {}) {
   size_t workers = threads > 0 ? static_cast<size_t>(threads)
                                : std::max(1u, std::thread::hardware_concurrency());
   workers = std::min(workers, std::max<size_t>(1, count / grain));
   std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t i = next++; i < count; i = next++) fn(i);
+  std::atomic<size_t> completed{0};
+  size_t reported = 0;  // in 1/200ths, the calling thread's
+  auto work = [&](bool caller) {
+    for (size_t i = next++; i < count; i = next++) {
+      fn(i);
+      const size_t c = ++completed;
+      if (caller && passed && c * 200 / count > reported) {
+        reported = c * 200 / count;
+        passed(static_cast<double>(c) / static_cast<double>(count));
+      }
+    }
   };
   std::vector<std::thread> pool;
-  for (size_t t = 1; t < workers; ++t) pool.emplace_back(work);
-  work();
+  for (size_t t = 1; t < workers; ++t) pool.emplace_back(work, false);
+  work(true);
   for (std::thread& t : pool) t.join();
 }
 
@@ -326,6 +339,15 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   directions.erase(std::unique(directions.begin(), directions.end()), directions.end());
   const double total = static_cast<double>(r_full > r_first ? 2 * directions.size() : directions.size());
   double done = 0.0;
+  // Within a direction's pass: a search at large N spends seconds to
+  // minutes in one (N = 65536, tent-folded: about 20 s on two cores).
+  std::function<void(double)> within_pass;
+  // A pass's end is reported as done + 1 below.
+  if (progress) {
+    within_pass = [&](double fraction) {
+      if (fraction < 1.0) progress(done + fraction, total);
+    };
+  }
   using Held = LatticeTermCache::Terms;
   std::vector<std::shared_ptr<const std::vector<Held>>> coarse(directions.size());
   std::vector<size_t> coarse_edges(directions.size());
@@ -337,10 +359,13 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
     if (!coarse[i]) {
       const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, CoarseOffsets(folded), r_first, folded);
       auto terms = std::make_shared<std::vector<Held>>(candidates.size());
-      ParallelOver(candidates.size(), options.threads, 16, [&](size_t j) {
-        const Terms t = ScoreTerms(n, candidates[j], r_first, f);
-        (*terms)[j] = {t.directions.front(), t.corner};
-      });
+      ParallelOver(
+          candidates.size(), options.threads, 16,
+          [&](size_t j) {
+            const Terms t = ScoreTerms(n, candidates[j], r_first, f);
+            (*terms)[j] = {t.directions.front(), t.corner};
+          },
+          within_pass);
       coarse[i] = terms;
       cache->PutDense(key, std::move(terms));
     }
@@ -424,10 +449,13 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
           family = std::move(built);
         }
         std::vector<Held> terms(missing.size());
-        ParallelOver(missing.size(), options.threads, final_grain, [&](size_t j) {
-          const Terms t = ScoreTerms(n, missing[j], r_full, *family);
-          terms[j] = {t.directions.front(), t.corner};
-        });
+        ParallelOver(
+            missing.size(), options.threads, final_grain,
+            [&](size_t j) {
+              const Terms t = ScoreTerms(n, missing[j], r_full, *family);
+              terms[j] = {t.directions.front(), t.corner};
+            },
+            within_pass);
         for (size_t j = 0, m = 0; j < gs.size(); ++j) {
           if (!found[j]) full[i][j] = terms[m++];
         }

@@ -83,7 +83,9 @@ StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
 // key): both stages' terms are kept per direction, and each (direction, g)
 // is scored once however many keys it serves (a render's two-direction
 // pairs share their degrees and often their finalists).
-// progress(done, total) after each direction's pass of each stage.
+// progress(done, total): total counts the passes (one per direction and
+// stage), done how many are done, with fractions of the pass under way
+// (about 200 steps a pass); called on the calling thread only.
 StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
     uint32_t n, const std::vector<std::vector<double>>& keys, const AlignedLatticeOptions& options = {},
     const std::function<void(double done, double total)>& progress = {});

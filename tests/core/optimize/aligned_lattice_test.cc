@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -191,6 +192,32 @@ TEST(AlignedLattice, BatchChoosesWhatEachKeyChoosesAlone) {
     }
   }
   EXPECT_EQ(ChooseAlignedLatticeGenerators(256, {{30}, {}}).status().code(), Status::Code::kInvalidArgument);
+}
+
+// A search at large N spends seconds in one pass: progress moves within it,
+// on the calling thread, and the choice is the one made without progress.
+TEST(AlignedLattice, ProgressMovesWithinAPass) {
+  const uint32_t n = 4096;
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<double> seen;
+  double reported_total = 0.0;
+  AlignedLatticeOptions options;
+  options.threads = 2;
+  auto with = ChooseAlignedLatticeGenerators(n, {{30.0}}, options, [&](double done, double total) {
+    EXPECT_EQ(std::this_thread::get_id(), caller);
+    if (!seen.empty()) EXPECT_GT(done, seen.back());
+    seen.push_back(done);
+    reported_total = total;
+  });
+  ASSERT_TRUE(with.ok());
+  EXPECT_EQ(reported_total, 2.0);  // one direction, two stages
+  EXPECT_GT(seen.size(), 20u);
+  EXPECT_EQ(seen.back(), reported_total);
+  EXPECT_GT(std::count_if(seen.begin(), seen.end(), [](double d) { return d > 0.0 && d < 1.0; }), 10);
+  auto without = ChooseAlignedLatticeGenerator(n, {30.0}, options);
+  ASSERT_TRUE(without.ok());
+  EXPECT_EQ(with->front().generator, without->generator);
+  EXPECT_EQ(with->front().score, without->score);
 }
 
 // A server searches key after key over one LatticeTermCache: whatever was
