@@ -112,8 +112,7 @@ int RunLattice(const OptimizeOptions& o) {
   std::string comment;
   for (int i = 0; i < sets; ++i) {
     const uint64_t seed = o.seed + static_cast<uint64_t>(i);
-    points.push_back(folded ? TentLatticePoints(n, choice->generator, seed)
-                            : Rank1LatticePoints(n, choice->generator, seed));
+    points.push_back(LatticePoints(n, choice->generator, seed, folded));
     char line[256];
     std::snprintf(line, sizeof(line),
                   "%salignset aligned %slattice%s: N=%u directions(deg, edge normal)=%s "

@@ -764,8 +764,7 @@ Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job,
     auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
     made = choice.status();
     if (choice.ok()) {
-      record.points = folded ? TentLatticePoints(key.n, choice->generator, key.realization)
-                             : Rank1LatticePoints(key.n, choice->generator, key.realization);
+      record.points = LatticePoints(key.n, choice->generator, key.realization, folded);
       detail = fmt::format("generator={} score={:.6g} candidates={}", choice->generator, choice->score,
                            choice->candidates);
     }

@@ -202,10 +202,10 @@ double Quantized(double score) { return std::ldexp(std::nearbyint(std::ldexp(sco
 // thread given at least `grain` items (a thread costs tens of microseconds
 // to start); each result depends on its i alone, so nothing depends on the
 // thread count.
-template <class Fn>
 // `passed(fraction)`, when given, is called on the calling thread only (a
 // progress display need not be thread-safe), each time another 1/200 of the
 // items is done, as far as that thread sees.
+template <class Fn>
 void ParallelOver(size_t count, int threads, size_t grain, const Fn& fn,
                   const std::function<void(double fraction)>& passed = {}) {
   size_t workers = threads > 0 ? static_cast<size_t>(threads)
@@ -530,8 +530,11 @@ StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directi
                                   uint64_t seed, const AlignedLatticeOptions& options) {
   auto choice = ChooseAlignedLatticeGenerator(n, directions_deg, options);
   if (!choice.ok()) return choice.status();
-  return options.folded ? TentLatticePoints(n, choice->generator, seed)
-                        : Rank1LatticePoints(n, choice->generator, seed);
+  return LatticePoints(n, choice->generator, seed, options.folded);
+}
+
+PointSet LatticePoints(uint32_t n, uint32_t g, uint64_t seed, bool folded) {
+  return folded ? TentLatticePoints(n, g, seed) : Rank1LatticePoints(n, g, seed);
 }
 
 }  // namespace alignset

@@ -127,6 +127,10 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 // integral: phi maps the uniform measure to itself).
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 
+// TentLatticePoints when `folded`, else Rank1LatticePoints: the points of
+// a generator chosen with AlignedLatticeOptions::folded as given.
+PointSet LatticePoints(uint32_t n, uint32_t g, uint64_t seed, bool folded);
+
 // The tent phi(u) = 1 - |2 u - 1| that folds [0, 1) onto [0, 1]: what
 // TentLatticePoints applies after its shift, and a renderer after each
 // pixel's shift of the unfolded lattice.
