@@ -56,10 +56,11 @@ std::string Comment(const SetInfo& i) {
   std::snprintf(comment, sizeof(comment),
                 "alignset served set: N=%u directions(deg, edge normal)=0,90,%s key=%s "
                 "realization=%u\nswap=%d invert=%d loss=%.9g spectrum=%.9g sw=%.9g iterations=%d "
-                "engine=%s seed=%llu algorithm_version=%d construction=%s",
+                "engine=%s seed=%llu algorithm_version=%d construction=%s%s",
                 i.n, Join(i.served_exact_deg).c_str(), i.key_text.c_str(), i.realization, i.swapped,
                 i.inverted, i.loss_total, i.loss_spectrum, i.loss_sw, i.iterations, i.engine.c_str(),
-                static_cast<unsigned long long>(i.seed), i.algorithm_version, i.construction.c_str());
+                static_cast<unsigned long long>(i.seed), i.algorithm_version, i.construction.c_str(),
+                i.lattice_generator != 0 ? (" generator=" + std::to_string(i.lattice_generator)).c_str() : "");
   return comment;
 }
 
@@ -264,6 +265,10 @@ int RunGet(GetOptions o) {
                                                        : "rank-1 lattice",
                    si.optimize_seconds,
                    si.profile.c_str());
+      if (si.lattice_generator != 0) {
+        std::fprintf(report, "generator      (1, %u) / %u%s\n", si.lattice_generator, si.n,
+                     si.construction == "tent-lattice" ? ", shifted then folded" : "");
+      }
     } else {
       std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,
                    si.loss_spectrum, si.loss_sw);

@@ -105,6 +105,7 @@ SetInfo ToInfo(const v1::SetMetadata& md, uint32_t n) {
   i.engine = md.engine();
   // A server from before constructions sends none: its sets are optimized.
   if (!md.construction().empty()) i.construction = md.construction();
+  i.lattice_generator = md.lattice_generator();
   return i;
 }
 

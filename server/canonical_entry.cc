@@ -3,6 +3,8 @@
 #include <bit>
 #include <cstring>
 
+#include "core/optimize/aligned_lattice.h"
+
 namespace alignset::server {
 
 static_assert(std::endian::native == std::endian::little,
@@ -33,6 +35,15 @@ std::shared_ptr<const std::string> CanonicalEntry::Encoded(const AlignOps& ops) 
   std::lock_guard<std::mutex> lock(mu_);
   if (!encoded_[i]) encoded_[i] = std::move(bytes);
   return encoded_[i];
+}
+
+std::optional<uint32_t> CanonicalEntry::LatticeGenerator(uint64_t seed, bool folded) const {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (!generator_read_) {
+    generator_ = LatticeGeneratorOf(record_.points, seed, folded);
+    generator_read_ = true;
+  }
+  return generator_;
 }
 
 }  // namespace alignset::server

@@ -3,6 +3,7 @@
 #include <array>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "core/align/canonical.h"
@@ -29,6 +30,11 @@ class CanonicalEntry {
   bool stored() const { return stored_; }
   // The set aligned by `ops`, encoded; built once per element.
   std::shared_ptr<const std::string> Encoded(const AlignOps& ops) const;
+  // For a lattice's record (realization `seed`, tent-folded or not): the
+  // canonical set's generator, read back from the points on first use
+  // (LatticeGeneratorOf, O(N)) since the cache stores points only; nullopt
+  // when the points are no such lattice.
+  std::optional<uint32_t> LatticeGenerator(uint64_t seed, bool folded) const;
   // What the entry may grow to: the points plus the four alignments a
   // canonicalization can ask for.
   size_t ChargedBytes() const { return record_.points.size() * sizeof(Point2) * 5 + 256; }
@@ -38,6 +44,8 @@ class CanonicalEntry {
   const bool stored_;
   mutable std::mutex mu_;
   mutable std::array<std::shared_ptr<const std::string>, 8> encoded_;
+  mutable bool generator_read_ = false;
+  mutable std::optional<uint32_t> generator_;
 };
 
 }  // namespace alignset::server

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/optimize/aligned_lattice.h"
 #include "core/optimize/realization.h"
 #include "core/spectral/frequency_set.h"
 #include "server/bearer_token.h"
@@ -153,6 +154,17 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
     p->set_algorithm_version(construction == Construction::kLattice       ? kLatticeAlgorithmVersion
                              : construction == Construction::kTentLattice ? kTentLatticeAlgorithmVersion
                                                                           : kNetAlgorithmVersion);
+    if (construction == Construction::kLattice || construction == Construction::kTentLattice) {
+      // The served set's generator: the canonical one carried by the same
+      // swap / mirror as the points (MapLatticeGenerator).
+      const auto g = entry.LatticeGenerator(key.realization, construction == Construction::kTentLattice);
+      if (g) {
+        md->set_lattice_generator(
+            MapLatticeGenerator(key.n, *g, canon.ops.swap, canon.ops.invert, canon.ops.invert_y));
+      } else {
+        spdlog::warn("{}: the cached points are not the lattice of any generator", KeyString(key));
+      }
+    }
     return;
   }
   const FrequencyParams fp = DefaultFrequencyParams(key.n);

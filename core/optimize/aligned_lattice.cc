@@ -499,9 +499,29 @@ StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
   return choices->front();
 }
 
-PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
+namespace {
+
+// The shifts of realization `seed`: whole cells for the plain lattice, a
+// continuous shift for the folded one.
+struct CellShift {
+  uint64_t x, y;
+};
+CellShift PlainShift(uint32_t n, uint64_t seed) {
   Pcg32 rng(HashCombine(seed, 0x616c6c6174ULL));
-  const uint64_t sx = rng.Uniform(n), sy = rng.Uniform(n);
+  const uint64_t sx = rng.Uniform(n);
+  return {sx, rng.Uniform(n)};
+}
+Point2 TentShift(uint64_t seed) {
+  Pcg32 rng(HashCombine(seed, 0x74656e74ULL));
+  const double sx = rng.NextDouble();
+  return {sx, rng.NextDouble()};
+}
+
+}  // namespace
+
+PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
+  const CellShift shift = PlainShift(n, seed);
+  const uint64_t sx = shift.x, sy = shift.y;
   PointSet points(n);
   const double inv = 1.0 / n;
   for (uint64_t i = 0; i < n; ++i) {
@@ -512,8 +532,8 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
 }
 
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
-  Pcg32 rng(HashCombine(seed, 0x74656e74ULL));
-  const double sx = rng.NextDouble(), sy = rng.NextDouble();
+  const Point2 shift = TentShift(seed);
+  const double sx = shift.x, sy = shift.y;
   PointSet points(n);
   const double inv = 1.0 / n;
   for (uint64_t i = 0; i < n; ++i) {
@@ -535,6 +555,33 @@ StatusOr<PointSet> AlignedLattice(uint32_t n, const std::vector<double>& directi
 
 PointSet LatticePoints(uint32_t n, uint32_t g, uint64_t seed, bool folded) {
   return folded ? TentLatticePoints(n, g, seed) : Rank1LatticePoints(n, g, seed);
+}
+
+std::optional<uint32_t> LatticeGeneratorOf(const PointSet& points, uint64_t seed, bool folded) {
+  if (points.size() < 2 || points.size() > std::numeric_limits<uint32_t>::max()) return std::nullopt;
+  const uint32_t n = static_cast<uint32_t>(points.size());
+  // Point 1 is the lattice's (1, g) / N moved by the realization's shift:
+  // its y gives g, up to the fold's two preimages and rounding.
+  std::vector<int64_t> guesses;
+  if (folded) {
+    const double sy = TentShift(seed).y;
+    for (double u : {0.5 * points[1].y, 1.0 - 0.5 * points[1].y}) {
+      guesses.push_back(static_cast<int64_t>(std::llround((u - sy) * n)));
+    }
+  } else {
+    const CellShift shift = PlainShift(n, seed);
+    guesses.push_back(static_cast<int64_t>(std::llround(points[1].y * n - 0.5)) -
+                      static_cast<int64_t>(shift.y));
+  }
+  const int64_t nn = n;
+  for (int64_t guess : guesses) {
+    for (int64_t d : {0, -1, 1}) {
+      const uint32_t g = static_cast<uint32_t>((((guess + d) % nn) + nn) % nn);
+      if (std::gcd(g, n) != 1) continue;
+      if (LatticePoints(n, g, seed, folded) == points) return g;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace alignset

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/util/point_set.h"
@@ -130,6 +131,15 @@ PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 // TentLatticePoints when `folded`, else Rank1LatticePoints: the points of
 // a generator chosen with AlignedLatticeOptions::folded as given.
 PointSet LatticePoints(uint32_t n, uint32_t g, uint64_t seed, bool folded);
+
+// The generator g with LatticePoints(N, g, seed, folded) == points, bit
+// for bit (N = points.size()); nullopt when the points are no such lattice.
+// A cache stores a lattice's points, not its generator: this gives the
+// generator back from the points and the realization in O(N), so a server
+// can tell a renderer the generator of a set it serves without searching
+// again. Candidates come from the first two points and are checked against
+// the whole set, so a wrong answer is impossible, only none.
+std::optional<uint32_t> LatticeGeneratorOf(const PointSet& points, uint64_t seed, bool folded);
 
 // The tent phi(u) = 1 - |2 u - 1| that folds [0, 1) onto [0, 1]: what
 // TentLatticePoints applies after its shift, and a renderer after each

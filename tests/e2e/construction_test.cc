@@ -11,6 +11,7 @@
 #include <alignset/client.h>
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <numeric>
@@ -155,8 +156,24 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   ASSERT_TRUE(g1.has_value()) << why;
   EXPECT_EQ(*g1, *g);
 
+  // The metadata tells the generator, for every realization.
+  EXPECT_EQ(first.info.lattice_generator, *g);
+  EXPECT_EQ(r1.info.lattice_generator, *g);
+
   const ServiceMetrics m = client->GetMetrics().value();
   EXPECT_EQ(m.optimizations_completed, 2u);  // realization 0 and 1, once each
+
+  // A server started on the same SQLite file reads the set back and tells
+  // the same generator (read back from the stored points).
+  client.reset();
+  EXPECT_EQ(server.Stop(SIGTERM), 0);
+  ServerProcess restarted(dir.path(), kFlags);
+  ASSERT_EQ(restarted.error(), "");
+  auto again = ConnectTo(restarted);
+  const AlignedSet stored = MustGet(*again, n, 30.0, "lattice", 1);
+  EXPECT_TRUE(stored.info.from_cache);
+  EXPECT_EQ(stored.raw, r1.raw);
+  EXPECT_EQ(stored.info.lattice_generator, *g);
 }
 
 // (b) 60 (swap), 150 (mirror) and 120 (both) are the canonical 30-degree
@@ -189,6 +206,8 @@ TEST(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice)
     if (s.info.inverted) expected = n - expected;
     if (s.info.inverted_y) expected = n - expected;
     EXPECT_EQ(*g, expected) << "swapped " << s.info.swapped << " inverted " << s.info.inverted;
+    // The metadata tells the served set's generator without a search.
+    EXPECT_EQ(s.info.lattice_generator, *g);
     EXPECT_EQ(s.info.swapped, theta == 60.0 || theta == 120.0);
     EXPECT_EQ(s.info.inverted, theta == 150.0 || theta == 120.0);
     const double aligned = WindowVariance(n, *g, theta);
@@ -221,7 +240,14 @@ TEST(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
   EXPECT_EQ(first.info.engine, "tent-lattice");
   EXPECT_EQ(first.info.algorithm_version, 1);
   EXPECT_EQ(first.info.seed, 2u);
+  EXPECT_EQ(first.info.lattice_generator, choice->generator);
   const AlignedSet mirrored = MustGet(*client, n, 150.0, "tent-lattice", 2);
+  // Mirrored, the served generator is N - g (for a folded lattice g and
+  // N - g give the same sets under other shifts); swapped, g^-1.
+  EXPECT_EQ(mirrored.info.lattice_generator, n - choice->generator);
+  const AlignedSet swapped = MustGet(*client, n, 60.0, "tent-lattice", 2);
+  EXPECT_TRUE(swapped.info.swapped);
+  EXPECT_EQ(swapped.info.lattice_generator, InverseMod(choice->generator, n));
   EXPECT_TRUE(mirrored.info.from_cache);
   EXPECT_TRUE(mirrored.info.inverted);
   ASSERT_EQ(mirrored.points.size(), n);
@@ -328,6 +354,7 @@ TEST(Constructions, AnOptimizedRequestIsNeverAnsweredWithTheLattice) {
   EXPECT_FALSE(optimized.info.from_cache);
   EXPECT_NE(optimized.info.engine, "lattice");
   EXPECT_GT(optimized.info.iterations, 0);
+  EXPECT_EQ(optimized.info.lattice_generator, 0u);
   std::string why;
   EXPECT_FALSE(LatticeGenerator(optimized.points, 256, &why).has_value());
   const AlignedSet again = MustGet(*client, 256, 30.0, "lattice");

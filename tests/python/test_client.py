@@ -6,6 +6,7 @@ errors with the right status codes.
   ALIGNSET_SERVER_BIN=build/server/alignset-server PYTHONPATH=build/python \
       /usr/bin/python3 tests/python/test_client.py
 """
+import math
 import os
 import shutil
 import subprocess
@@ -155,6 +156,34 @@ class ServerTest(unittest.TestCase):
         q = np.mean(np.exp(sets[:, :, 0]) * sets[:, :, 1] ** 2, axis=1)
         self.assertGreater(np.std(q), 0)
         self.assertLess(abs(q.mean() - (np.e - 1) / 3), 4 * np.std(q) / np.sqrt(len(q)))
+
+    def test_served_lattice_generator_and_own_shifts(self):
+        # A plain lattice (120 degrees: swapped and mirrored) is its
+        # generator's lattice under a shift: the one through its first point.
+        s = self.client.get_set(64, 120, construction="lattice")
+        g = s.metadata.lattice_generator
+        self.assertTrue(0 < g < 64 and math.gcd(g, 64) == 1, g)
+        own = alignset.lattice_points(64, g, s.points[0], False)
+        key = lambda p: p[np.lexsort((p[:, 1], p[:, 0]))]
+        np.testing.assert_allclose(key(own), key(s.points), atol=1e-12)
+        self.assertEqual(self.client.get_set(64, 30, construction="optimized").metadata.lattice_generator, 0)
+        # A tent-lattice: each pixel's own shift goes before the fold. Unbiased,
+        # and on a smooth function that is not periodic on the square far
+        # below a Cranley-Patterson shift of the served (folded) points.
+        t = self.client.get_set(64, 30, construction="tent-lattice")
+        g = t.metadata.lattice_generator
+        self.assertTrue(0 < g < 64 and math.gcd(g, 64) == 1, g)
+        f = lambda p: np.mean(np.exp(p[:, 0]) * p[:, 1] ** 2)
+        rng = np.random.default_rng(5)
+        before = np.array([f(alignset.lattice_points(64, g, rng.random(2), True)) for _ in range(64)])
+        after = np.array([f(np.mod(t.points + rng.random(2), 1.0)) for _ in range(64)])
+        exact = (np.e - 1) / 3
+        self.assertLess(abs(before.mean() - exact), 4 * before.std() / 8 + 1e-15)
+        self.assertLess(5 * before.var(), after.var())
+        with self.assertRaises(ValueError):
+            alignset.lattice_points(64, 2, (0.1, 0.2), True)
+        with self.assertRaises(ValueError):
+            alignset.lattice_points(64, 3, (1.0, 0.2), True)
 
     def test_baseline_samples(self):
         a = self.client.samples("owen-sobol", 64, seed=3)

@@ -97,6 +97,12 @@ struct SetInfo {
   // parameters, seed = its realization, algorithm_version the lattice
   // construction's; a net likewise with engine "net".
   std::string construction = "optimized";
+  // For a lattice or tent-lattice: the served set's generator g (aligned
+  // already): the set is {frac(i (1, g) / N + s)} for some shift s, folded
+  // after the shift for a tent-lattice. A renderer draws its own s per
+  // pixel with LatticePoints (<alignset/lattice_points.h>). 0 otherwise,
+  // and from a server too old to send it.
+  uint32_t lattice_generator = 0;
 };
 
 struct AlignedSet {

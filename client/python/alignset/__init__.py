@@ -13,6 +13,6 @@ python3-numpy; the gRPC stubs (alignset.v1) are generated at build time by
 protoc and grpc_python_plugin (see README, "Python").
 """
 
-from alignset.client import AlignedSet, AlignSetError, Client
+from alignset.client import AlignedSet, AlignSetError, Client, lattice_points
 
-__all__ = ["AlignedSet", "AlignSetError", "Client"]
+__all__ = ["AlignedSet", "AlignSetError", "Client", "lattice_points"]

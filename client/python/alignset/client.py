@@ -33,6 +33,34 @@ class AlignedSet:
     metadata: object
 
 
+def lattice_points(n, generator, shift, folded):
+    """Points of a served lattice under a shift of your own: the rank-1
+    lattice frac(i (1, generator) / n + shift), i < n, folded by the tent
+    1 - |2u - 1| after the shift when `folded` (a "tent-lattice").
+
+    The served set's generator is `metadata.lattice_generator` (0 for other
+    constructions). A renderer that randomizes each pixel draws a uniform
+    shift in [0, 1)^2 per pixel and builds the points here: for a
+    tent-lattice, shifting before the fold keeps its gain on smooth
+    functions that a shift of the served (folded) points loses. Returns an
+    (n, 2) float64 array in [0, 1)^2, the same numbers as the C++ header
+    <alignset/lattice_points.h>."""
+    n = int(n)
+    generator = int(generator)
+    if n < 1 or not 0 < generator < max(n, 2) or math.gcd(generator, n) != 1:
+        raise ValueError("need n >= 1 and a generator coprime to n in [1, n)")
+    sx, sy = (float(v) for v in shift)
+    if not (0.0 <= sx < 1.0 and 0.0 <= sy < 1.0):
+        raise ValueError("shift must lie in [0, 1)^2")
+    i = np.arange(n, dtype=np.uint64)
+    x = i.astype(np.float64) * (1.0 / n) + sx
+    y = ((i * np.uint64(generator)) % np.uint64(n)).astype(np.float64) * (1.0 / n) + sy
+    pts = np.stack([x - np.floor(x), y - np.floor(y)], axis=1)
+    if folded:
+        pts = np.minimum(1.0 - np.abs(2.0 * pts - 1.0), np.nextafter(1.0, 0.0))
+    return pts
+
+
 def _points(data, n):
     # 16 bytes per point, little-endian float64, x0 y0 x1 y1 ...
     if len(data) != 16 * n:

@@ -167,6 +167,91 @@ TEST(AlignedLattice, CanonicalChoiceMapsOntoEveryDirection) {
   EXPECT_EQ(AlignedLatticeScore(1024, 2, {30}).status().code(), Status::Code::kInvalidArgument);
 }
 
+// A cache keeps a lattice's points, not its generator: the generator comes
+// back from the points and the realization, exactly, for either kind and
+// any N, and a set that is no such lattice gives none.
+TEST(AlignedLattice, GeneratorComesBackFromThePoints) {
+  for (bool folded : {false, true}) {
+    for (uint32_t n : {16u, 257u, 1000u, 1024u, 4096u}) {
+      for (uint32_t g : {1u, 3u, 7u, 97u, n - 1, n / 2 + 1}) {
+        if (std::gcd(g % n, n) != 1) continue;
+        for (uint64_t seed : {0u, 5u, 63u}) {
+          const PointSet points = LatticePoints(n, g % n, seed, folded);
+          const auto back = LatticeGeneratorOf(points, seed, folded);
+          ASSERT_TRUE(back.has_value()) << "N " << n << " g " << g << " seed " << seed << " folded " << folded;
+          EXPECT_EQ(*back, g % n) << "N " << n << " seed " << seed << " folded " << folded;
+        }
+      }
+    }
+    PointSet nudged = LatticePoints(1024, 77, 3, folded);
+    nudged[500].x = std::nextafter(nudged[500].x, 2.0);
+    EXPECT_FALSE(LatticeGeneratorOf(nudged, 3, folded).has_value()) << "folded " << folded;
+    // The other kind's points, and too few points.
+    EXPECT_FALSE(LatticeGeneratorOf(LatticePoints(1024, 77, 3, !folded), 3, folded).has_value());
+    EXPECT_FALSE(LatticeGeneratorOf(PointSet(1, {0.5, 0.5}), 0, folded).has_value());
+  }
+}
+
+// A folded lattice aligned by the square's symmetries is again a folded
+// lattice, of the generator MapLatticeGenerator gives, under another shift:
+// the tent is even and 1 - phi(u) = phi(u + 1/2), so swap maps (g, s) to
+// (g^-1, (s_y, s_x)), inverting x to (N - g, (s_x + 1/2, -s_y)) and inverting
+// y to (N - g, (-s_x, s_y + 1/2)). So a renderer told the served generator
+// can draw its own shift and fold, and get the served set's structure.
+TEST(AlignedLattice, AlignedFoldedLatticeIsTheMappedGeneratorsFoldedLattice) {
+  const uint32_t n = 1024;
+  const uint32_t g = 397;
+  const uint64_t seed = 11;
+  const PointSet canonical = TentLatticePoints(n, g, seed);
+  // The shift TentLatticePoints used, read back from point 0 (i = 0):
+  // phi(s) = p0 has the preimages p0 / 2 and 1 - p0 / 2; point 1 tells which.
+  auto fold = [](double u) { u -= std::floor(u); return TentFold(u); };
+  double sx = 0.0, sy = 0.0;
+  for (double cx : {0.5 * canonical[0].x, 1.0 - 0.5 * canonical[0].x}) {
+    if (std::abs(fold(cx + 1.0 / n) - canonical[1].x) < 1e-12) sx = cx;
+  }
+  for (double cy : {0.5 * canonical[0].y, 1.0 - 0.5 * canonical[0].y}) {
+    if (std::abs(fold(cy + static_cast<double>(g) / n) - canonical[1].y) < 1e-12) sy = cy;
+  }
+  auto sorted_folded = [&](uint32_t m, double tx, double ty) {
+    PointSet p(n);
+    for (uint32_t i = 0; i < n; ++i) {
+      p[i] = {fold(static_cast<double>(i) / n + tx),
+              fold(static_cast<double>((uint64_t{i} * m) % n) / n + ty)};
+    }
+    std::sort(p.begin(), p.end(), [](const Point2& a, const Point2& b) { return a.x < b.x; });
+    return p;
+  };
+  {
+    const PointSet check = sorted_folded(g, sx, sy);
+    PointSet c = canonical;
+    std::sort(c.begin(), c.end(), [](const Point2& a, const Point2& b) { return a.x < b.x; });
+    for (uint32_t i = 0; i < n; ++i) ASSERT_NEAR(c[i].y, check[i].y, 1e-12) << "the shift read back";
+  }
+  for (int bits = 1; bits < 8; ++bits) {
+    AlignOps ops;
+    ops.swap = bits & 1;
+    ops.invert = bits & 2;
+    ops.invert_y = bits & 4;
+    uint32_t m = g;
+    double tx = sx, ty = sy;
+    if (ops.swap) {
+      m = MapLatticeGenerator(n, m, true, false, false);
+      std::swap(tx, ty);
+    }
+    if (ops.invert) m = n - m, tx += 0.5, ty = -ty;
+    if (ops.invert_y) m = n - m, tx = -tx, ty += 0.5;
+    ASSERT_EQ(m, MapLatticeGenerator(n, g, ops.swap, ops.invert, ops.invert_y));
+    PointSet aligned = Align(canonical, ops);
+    std::sort(aligned.begin(), aligned.end(), [](const Point2& a, const Point2& b) { return a.x < b.x; });
+    const PointSet want = sorted_folded(m, tx, ty);
+    for (uint32_t i = 0; i < n; ++i) {
+      ASSERT_NEAR(aligned[i].x, want[i].x, 1e-12) << "ops " << bits << " point " << i;
+      ASSERT_NEAR(aligned[i].y, want[i].y, 1e-12) << "ops " << bits << " point " << i;
+    }
+  }
+}
+
 // The batch shares each (direction, g)'s terms between keys; every choice
 // must still be the one the key gets alone, whatever else is in the batch.
 TEST(AlignedLattice, BatchChoosesWhatEachKeyChoosesAlone) {
