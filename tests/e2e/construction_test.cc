@@ -14,6 +14,7 @@
 #include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -114,16 +115,27 @@ double WindowVariance(uint32_t n, uint32_t g, double theta) {
   return sum;
 }
 
+// Most tests need one server of kFlags on a fresh database and a client.
+class Constructions : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    server_ = std::make_unique<ServerProcess>(dir_.path(), kFlags);
+    ASSERT_EQ(server_->error(), "");
+    client_ = ConnectTo(*server_);
+    ASSERT_NE(client_, nullptr);
+  }
+
+  TempDir dir_;
+  std::unique_ptr<ServerProcess> server_;
+  std::unique_ptr<ServiceClient> client_;
+};
+
 // (a) N = 1024 at 30 degrees: a rank-1 lattice, the one the core chooses for
 // 30 degrees (realization 0 = seed 0), stored under the lattice profile; the
 // same call again is a cache hit with identical bytes.
-TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
+TEST_F(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   const uint32_t n = 1024;
-  const AlignedSet first = MustGet(*client, n, 30.0, "lattice");
+  const AlignedSet first = MustGet(*client_, n, 30.0, "lattice");
   ASSERT_EQ(first.points.size(), n);
   std::string why;
   const auto g = LatticeGenerator(first.points, n, &why);
@@ -144,12 +156,12 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   EXPECT_EQ(first.info.algorithm_version, 2);  // kLatticeAlgorithmVersion
   EXPECT_FALSE(first.info.from_cache);
 
-  const AlignedSet second = MustGet(*client, n, 30.0, "lattice");
+  const AlignedSet second = MustGet(*client_, n, 30.0, "lattice");
   EXPECT_TRUE(second.info.from_cache);
   EXPECT_EQ(second.raw, first.raw);
 
   // Realization 1: the same lattice, shifted by whole cells.
-  const AlignedSet r1 = MustGet(*client, n, 30.0, "lattice", 1);
+  const AlignedSet r1 = MustGet(*client_, n, 30.0, "lattice", 1);
   EXPECT_NE(r1.raw, first.raw);
   EXPECT_EQ(r1.info.seed, 1u);
   const auto g1 = LatticeGenerator(r1.points, n, &why);
@@ -160,14 +172,14 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
   EXPECT_EQ(first.info.lattice_generator, *g);
   EXPECT_EQ(r1.info.lattice_generator, *g);
 
-  const ServiceMetrics m = client->GetMetrics().value();
+  const ServiceMetrics m = client_->GetMetrics().value();
   EXPECT_EQ(m.optimizations_completed, 2u);  // realization 0 and 1, once each
 
   // A server started on the same SQLite file reads the set back and tells
   // the same generator (read back from the stored points).
-  client.reset();
-  EXPECT_EQ(server.Stop(SIGTERM), 0);
-  ServerProcess restarted(dir.path(), kFlags);
+  client_.reset();
+  EXPECT_EQ(server_->Stop(SIGTERM), 0);
+  ServerProcess restarted(dir_.path(), kFlags);
   ASSERT_EQ(restarted.error(), "");
   auto again = ConnectTo(restarted);
   const AlignedSet stored = MustGet(*again, n, 30.0, "lattice", 1);
@@ -180,21 +192,17 @@ TEST(Constructions, LatticeIsARank1LatticeAndTheSecondCallIsAHit) {
 // lattice aligned: lattices with the swapped / mirrored generator, exactly
 // as good on their own edges as the 30-degree one on its edges, and each
 // better than the unaligned best-Korobov lattice there.
-TEST(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
+TEST_F(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice) {
   const uint32_t n = 1024;
   const uint32_t korobov = Rank1Generator(n);
   std::string why;
-  const AlignedSet base = MustGet(*client, n, 30.0, "lattice");
+  const AlignedSet base = MustGet(*client_, n, 30.0, "lattice");
   const auto g30 = LatticeGenerator(base.points, n, &why);
   ASSERT_TRUE(g30.has_value()) << why;
   const double v30 = WindowVariance(n, *g30, 30.0);
   for (double theta : {30.0, 60.0, 150.0, 120.0}) {
     SCOPED_TRACE(theta);
-    const AlignedSet s = MustGet(*client, n, theta, "lattice");
+    const AlignedSet s = MustGet(*client_, n, theta, "lattice");
     EXPECT_EQ(s.info.profile, kLatticeProfile);
     EXPECT_EQ(s.info.phi1, 30);
     EXPECT_TRUE(s.info.from_cache);  // one canonical set: every direction is a hit
@@ -222,18 +230,14 @@ TEST(Constructions, SwappedAndMirroredDirectionsGetTheAlignedImagesOfOneLattice)
 // seed r), under its own profile; 150 degrees (a mirror) is the same set
 // mirrored, again a folded lattice of that generator (a half shift before
 // the fold), and the plain lattice of the same key is another set.
-TEST(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
+TEST_F(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
   const uint32_t n = 256;
   AlignedLatticeOptions folded;
   folded.folded = true;
   folded.window_deg = kTentLatticeWindowDeg;
   auto choice = ChooseAlignedLatticeGenerator(n, {30.0}, folded);
   ASSERT_TRUE(choice.ok());
-  const AlignedSet first = MustGet(*client, n, 30.0, "tent-lattice", 2);
+  const AlignedSet first = MustGet(*client_, n, 30.0, "tent-lattice", 2);
   EXPECT_EQ(first.points, TentLatticePoints(n, choice->generator, 2));
   EXPECT_EQ(first.info.construction, "tent-lattice");
   EXPECT_EQ(first.info.profile, "tent-lattice-v1-w2");
@@ -241,11 +245,11 @@ TEST(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
   EXPECT_EQ(first.info.algorithm_version, 1);
   EXPECT_EQ(first.info.seed, 2u);
   EXPECT_EQ(first.info.lattice_generator, choice->generator);
-  const AlignedSet mirrored = MustGet(*client, n, 150.0, "tent-lattice", 2);
+  const AlignedSet mirrored = MustGet(*client_, n, 150.0, "tent-lattice", 2);
   // Mirrored, the served generator is N - g (for a folded lattice g and
   // N - g give the same sets under other shifts); swapped, g^-1.
   EXPECT_EQ(mirrored.info.lattice_generator, n - choice->generator);
-  const AlignedSet swapped = MustGet(*client, n, 60.0, "tent-lattice", 2);
+  const AlignedSet swapped = MustGet(*client_, n, 60.0, "tent-lattice", 2);
   EXPECT_TRUE(swapped.info.swapped);
   EXPECT_EQ(swapped.info.lattice_generator, InverseMod(choice->generator, n));
   EXPECT_TRUE(mirrored.info.from_cache);
@@ -255,16 +259,13 @@ TEST(Constructions, TentLatticeIsTheFoldedLatticeAndItsMirrorImage) {
     EXPECT_NEAR(mirrored.points[i].x, 1.0 - first.points[i].x, 1e-12);
     EXPECT_EQ(mirrored.points[i].y, first.points[i].y);
   }
-  EXPECT_NE(MustGet(*client, n, 30.0, "lattice", 2).raw, first.raw);
+  EXPECT_NE(MustGet(*client_, n, 30.0, "lattice", 2).raw, first.raw);
 }
 
 // (c) An unknown construction is INVALID_ARGUMENT on every call that takes
 // one, with the known names in the message, and the server keeps serving.
-TEST(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto stub = OwnStub(server.address());
+TEST_F(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {
+  auto stub = OwnStub(server_->address());
   auto names_the_known = [](const std::string& message) {
     return message.find("'optimized'") != std::string::npos &&
            message.find("'lattice'") != std::string::npos && message.find("'net'") != std::string::npos;
@@ -332,22 +333,17 @@ TEST(Constructions, UnknownNamesAreInvalidArgumentAndTheServerKeepsServing) {
     EXPECT_TRUE(names_the_known(s.error_message())) << s.error_message();
   }
   // Still serving, both constructions.
-  auto client = ConnectTo(server);
-  EXPECT_EQ(MustGet(*client, 256, 30.0, "lattice").info.construction, "lattice");
-  EXPECT_EQ(MustGet(*client, 256, 30.0, "optimized").info.construction, "optimized");
-  EXPECT_EQ(MustGet(*client, 256, 30.0, "").info.construction, "optimized");
-  EXPECT_GE(GetMetrics(server.address()).requests_invalid(), 5u);
+  EXPECT_EQ(MustGet(*client_, 256, 30.0, "lattice").info.construction, "lattice");
+  EXPECT_EQ(MustGet(*client_, 256, 30.0, "optimized").info.construction, "optimized");
+  EXPECT_EQ(MustGet(*client_, 256, 30.0, "").info.construction, "optimized");
+  EXPECT_GE(GetMetrics(server_->address()).requests_invalid(), 5u);
 }
 
 // (d) The optimized set of a key whose lattice is cached is optimized, not
 // the lattice; and the lattice is still the lattice afterwards.
-TEST(Constructions, AnOptimizedRequestIsNeverAnsweredWithTheLattice) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
-  const AlignedSet lattice = MustGet(*client, 256, 30.0, "lattice");
-  const AlignedSet optimized = MustGet(*client, 256, 30.0, "");
+TEST_F(Constructions, AnOptimizedRequestIsNeverAnsweredWithTheLattice) {
+  const AlignedSet lattice = MustGet(*client_, 256, 30.0, "lattice");
+  const AlignedSet optimized = MustGet(*client_, 256, 30.0, "");
   EXPECT_NE(optimized.raw, lattice.raw);
   EXPECT_NE(optimized.info.profile, lattice.info.profile);
   EXPECT_EQ(optimized.info.construction, "optimized");
@@ -357,27 +353,23 @@ TEST(Constructions, AnOptimizedRequestIsNeverAnsweredWithTheLattice) {
   EXPECT_EQ(optimized.info.lattice_generator, 0u);
   std::string why;
   EXPECT_FALSE(LatticeGenerator(optimized.points, 256, &why).has_value());
-  const AlignedSet again = MustGet(*client, 256, 30.0, "lattice");
+  const AlignedSet again = MustGet(*client_, 256, 30.0, "lattice");
   EXPECT_TRUE(again.info.from_cache);
   EXPECT_EQ(again.raw, lattice.raw);
-  const AlignedSet optimized_again = MustGet(*client, 256, 30.0, "optimized");
+  const AlignedSet optimized_again = MustGet(*client_, 256, 30.0, "optimized");
   EXPECT_TRUE(optimized_again.info.from_cache);
   EXPECT_EQ(optimized_again.raw, optimized.raw);
   // Two sets cached, one per profile.
-  auto lattices = client->ListCachedSets(256, kLatticeProfile, 0);
+  auto lattices = client_->ListCachedSets(256, kLatticeProfile, 0);
   ASSERT_TRUE(lattices.ok());
   EXPECT_EQ(lattices->size(), 1u);
-  auto all = client->ListCachedSets(256, "", 0);
+  auto all = client_->ListCachedSets(256, "", 0);
   ASSERT_TRUE(all.ok());
   EXPECT_EQ(all->size(), 2u);
 }
 
 // Watch, batch (items and the space) and Precompute take the construction.
-TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
+TEST_F(Constructions, WatchBatchAndPrecomputeServeLattices) {
   std::string why;
 
   PrecomputeSpec spec;
@@ -386,12 +378,12 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
   spec.keys = {{10}, {20}};
   spec.realizations = 2;
   spec.construction = "lattice";
-  auto done = client->Precompute(spec, nullptr);
+  auto done = client_->Precompute(spec, nullptr);
   ASSERT_TRUE(done.ok()) << done.status().message();
   EXPECT_EQ(done->total, 4u);
   EXPECT_EQ(done->done, 4u);
   EXPECT_EQ(done->failed, 0u);
-  auto rerun = client->Precompute(spec, nullptr);
+  auto rerun = client_->Precompute(spec, nullptr);
   ASSERT_TRUE(rerun.ok()) << rerun.status().message();
   EXPECT_EQ(rerun->cached_already, 4u);
   // 100 degrees is 10 swapped: served from what precompute stored.
@@ -400,7 +392,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
   watch.directions_deg = {100.0};
   watch.realization = 1;
   watch.construction = "lattice";
-  auto watched = client->WatchAlignedSet(watch, nullptr);
+  auto watched = client_->WatchAlignedSet(watch, nullptr);
   ASSERT_TRUE(watched.ok()) << watched.status().message();
   EXPECT_TRUE(watched->info.from_cache);
   EXPECT_EQ(watched->info.construction, "lattice");
@@ -408,7 +400,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
   EXPECT_TRUE(LatticeGenerator(watched->points, 256, &why).has_value()) << why;
   // A new key through Watch: a set, no progress needed.
   watch.directions_deg = {33.0};
-  watched = client->WatchAlignedSet(watch, nullptr);
+  watched = client_->WatchAlignedSet(watch, nullptr);
   ASSERT_TRUE(watched.ok()) << watched.status().message();
   EXPECT_FALSE(watched->info.from_cache);
   EXPECT_TRUE(LatticeGenerator(watched->points, 256, &why).has_value()) << why;
@@ -419,7 +411,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
     items[i].directions_deg = {12.0 + 40.0 * static_cast<double>(i), 100.0};
     items[i].construction = "lattice";
   }
-  auto batch = client->GetAlignedSets(items);
+  auto batch = client_->GetAlignedSets(items);
   ASSERT_TRUE(batch.ok()) << batch.status().message();
   for (const BatchItem& item : *batch) {
     ASSERT_TRUE(item.status.ok()) << item.status.message();
@@ -428,7 +420,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
     EXPECT_TRUE(LatticeGenerator(item.set.points, 128, &why).has_value()) << why;
   }
 
-  auto stub = OwnStub(server.address());
+  auto stub = OwnStub(server_->address());
   v1::AlignedSetsRequest req;
   req.set_space(v1::ONE_DIRECTION);
   req.set_space_n(64);
@@ -445,7 +437,7 @@ TEST(Constructions, WatchBatchAndPrecomputeServeLattices) {
 
 // A read-only replica serves lattices from its shipped file, and fills a
 // missing one from its writer as a lattice (not the writer's optimized set).
-TEST(Constructions, AReplicaServesAndFillsLattices) {
+TEST(ConstructionReplicas, AReplicaServesAndFillsLattices) {
   TempDir shipped, writer_dir, replica_dir;
   std::string file;
   {
@@ -471,7 +463,9 @@ TEST(Constructions, AReplicaServesAndFillsLattices) {
   EXPECT_TRUE(LatticeGenerator(shipped_set.points, 64, &why).has_value()) << why;
   const AlignedSet filled = MustGet(*rc, 128, 77.25, "lattice");
   EXPECT_EQ(filled.info.construction, "lattice");
-  EXPECT_TRUE(LatticeGenerator(filled.points, 128, &why).has_value()) << why;
+  const auto filled_generator = LatticeGenerator(filled.points, 128, &why);
+  ASSERT_TRUE(filled_generator.has_value()) << why;
+  EXPECT_EQ(filled.info.lattice_generator, *filled_generator);  // read back on the replica
   const AlignedSet from_writer = MustGet(*wc, 128, 77.25, "lattice");
   EXPECT_TRUE(from_writer.info.from_cache);  // made for the replica
   EXPECT_EQ(filled.raw, from_writer.raw);
@@ -479,16 +473,13 @@ TEST(Constructions, AReplicaServesAndFillsLattices) {
 }
 
 // The CLI: get and precompute with --construction.
-TEST(Constructions, CliGetAndPrecomputeTakeConstruction) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
+TEST_F(Constructions, CliGetAndPrecomputeTakeConstruction) {
   const std::string cli = std::string(ALIGNSET_CLI_PATH) + " ";
-  const std::string at = " --server " + server.address();
+  const std::string at = " --server " + server_->address();
   auto pre = RunCommand(cli + "precompute" + at + " --n 128 --space keys --key 30 --key 40 --construction lattice");
   ASSERT_EQ(pre.exit_code, 0) << pre.output;
   EXPECT_NE(pre.output.find("constructed    2"), std::string::npos) << pre.output;
-  const std::string out = dir.path() + "/lattice.txt";
+  const std::string out = dir_.path() + "/lattice.txt";
   auto get = RunCommand(cli + "get" + at + " --n 128 --dir 130 --construction lattice --quiet --out " + out);
   ASSERT_EQ(get.exit_code, 0) << get.output;
   EXPECT_NE(get.output.find("construction   aligned rank-1 lattice"), std::string::npos) << get.output;
@@ -512,7 +503,7 @@ TEST(Constructions, CliGetAndPrecomputeTakeConstruction) {
   EXPECT_TRUE(LatticeGenerator(points, 128, &why).has_value()) << why;
 
   auto space = RunCommand(cli + "get" + at + " --n 64 --space 1dir --construction lattice --quiet --out " +
-                          dir.path() + "/space.npy");
+                          dir_.path() + "/space.npy");
   EXPECT_EQ(space.exit_code, 0) << space.output;
   auto optimized = RunCommand(cli + "get" + at + " --n 128 --dir 130 --quiet --out " + out);
   ASSERT_EQ(optimized.exit_code, 0) << optimized.output;
@@ -528,18 +519,14 @@ TEST(Constructions, CliGetAndPrecomputeTakeConstruction) {
 // elementary interval counted), its own profile, a hit the second time with
 // the same bytes, the mirrored direction its aligned image; an N that is not
 // a power of two is INVALID_ARGUMENT and the server keeps serving.
-TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
-  TempDir dir;
-  ServerProcess server(dir.path(), kFlags);
-  ASSERT_EQ(server.error(), "");
-  auto client = ConnectTo(server);
-  const AlignedSet first = MustGet(*client, 256, 30.0, "net");
+TEST_F(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
+  const AlignedSet first = MustGet(*client_, 256, 30.0, "net");
   EXPECT_EQ(first.info.construction, "net");
   EXPECT_EQ(first.info.engine, "net");
   EXPECT_EQ(first.info.profile, "net-v1-w1");
   EXPECT_FALSE(first.info.from_cache);
   EXPECT_EQ(testing::PrefixNetViolation(first.points), "");
-  const AlignedSet again = MustGet(*client, 256, 30.0, "net");
+  const AlignedSet again = MustGet(*client_, 256, 30.0, "net");
   EXPECT_TRUE(again.info.from_cache);
   ASSERT_EQ(again.points.size(), first.points.size());
   for (size_t i = 0; i < first.points.size(); ++i) {
@@ -547,11 +534,11 @@ TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
     ASSERT_EQ(again.points[i].y, first.points[i].y);
   }
   // 150 degrees is 30 mirrored (x -> 1 - x): the same canonical net.
-  const AlignedSet mirrored = MustGet(*client, 256, 150.0, "net");
+  const AlignedSet mirrored = MustGet(*client_, 256, 150.0, "net");
   EXPECT_TRUE(mirrored.info.from_cache);
   EXPECT_EQ(testing::PrefixNetViolation(mirrored.points), "");
   // An optimized request for the same key is not answered with the net.
-  const AlignedSet optimized = MustGet(*client, 256, 30.0, "");
+  const AlignedSet optimized = MustGet(*client_, 256, 30.0, "");
   EXPECT_EQ(optimized.info.construction, "optimized");
   EXPECT_FALSE(optimized.info.from_cache);
 
@@ -559,11 +546,11 @@ TEST(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
   bad.n = 100;
   bad.directions_deg = {30.0};
   bad.construction = "net";
-  auto refused = client->GetAlignedSet(bad);
+  auto refused = client_->GetAlignedSet(bad);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.status().code(), Status::Code::kInvalidArgument);
   EXPECT_NE(refused.status().message().find("power of two"), std::string::npos) << refused.status().message();
-  EXPECT_EQ(MustGet(*client, 64, 45.0, "net").points.size(), 64u);  // still serving
+  EXPECT_EQ(MustGet(*client_, 64, 45.0, "net").points.size(), 64u);  // still serving
 }
 
 }  // namespace
