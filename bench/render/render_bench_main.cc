@@ -38,6 +38,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -437,20 +438,20 @@ int Main(int argc, char** argv) {
   tile_csv << "n,sigma,optimized,random,seconds\n";
 
   const uint32_t two_max_n = std::strtoul(a["two-max-n"].c_str(), nullptr, 10);
-  // aligned-lattice*: degrees either side of a pixel's θ its lattice is
-  // chosen for (`alignset render --lattice-window`).
-  const double lattice_window = std::strtod(a["lattice-window"].c_str(), nullptr);
-  if (!(lattice_window >= 0.0 && lattice_window <= 10.0)) {
-    std::fprintf(stderr, "render_bench: --lattice-window must be in [0, 10] degrees, got %s\n",
-                 a["lattice-window"].c_str());
-    return 2;
-  }
-  // aligned-tent-lattice*: the same for the tent-folded lattices.
-  const double tent_window = std::strtod(a["tent-window"].c_str(), nullptr);
-  if (!(tent_window >= 0.0 && tent_window <= 10.0)) {
-    std::fprintf(stderr, "render_bench: --tent-window must be in [0, 10] degrees, got %s\n", a["tent-window"].c_str());
-    return 2;
-  }
+  // Degrees either side of a pixel's θ its lattice is chosen for:
+  // aligned-lattice* (`alignset render --lattice-window`) and
+  // aligned-tent-lattice* (--tent-window); nullopt after the error message.
+  auto window = [&a](const std::string& flag) -> std::optional<double> {
+    const double w = std::strtod(a[flag].c_str(), nullptr);
+    if (w >= 0.0 && w <= 10.0) return w;
+    std::fprintf(stderr, "render_bench: --%s must be in [0, 10] degrees, got %s\n", flag.c_str(),
+                 a[flag].c_str());
+    return std::nullopt;
+  };
+  const std::optional<double> lattice_window_flag = window("lattice-window");
+  const std::optional<double> tent_window_flag = window("tent-window");
+  if (!lattice_window_flag || !tent_window_flag) return 2;
+  const double lattice_window = *lattice_window_flag, tent_window = *tent_window_flag;
   for (uint32_t n : ns) {
     // Above two_max_n the two-direction variants fall back to one direction,
     // so the *-1dir ablation would repeat its parent.
