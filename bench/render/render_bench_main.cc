@@ -288,6 +288,20 @@ int Main(int argc, char** argv) {
     std::fprintf(stderr, "render_bench: --server ADDR is required (bench/render/run.sh starts one)\n");
     return 2;
   }
+  // Degrees either side of a pixel's θ its lattice is chosen for:
+  // aligned-lattice* (`alignset render --lattice-window`) and
+  // aligned-tent-lattice* (--tent-window); nullopt after the error message.
+  auto window = [&a](const std::string& flag) -> std::optional<double> {
+    const double w = std::strtod(a[flag].c_str(), nullptr);
+    if (w >= 0.0 && w <= 10.0) return w;
+    std::fprintf(stderr, "render_bench: --%s must be in [0, 10] degrees, got %s\n", flag.c_str(),
+                 a[flag].c_str());
+    return std::nullopt;
+  };
+  const std::optional<double> lattice_window_flag = window("lattice-window");
+  const std::optional<double> tent_window_flag = window("tent-window");
+  if (!lattice_window_flag || !tent_window_flag) return 2;
+  const double lattice_window = *lattice_window_flag, tent_window = *tent_window_flag;
   const std::string out = a["out"];
   // The whole path (a run under a new parent folder once lost its tables
   // silently); a folder that cannot be made stops the run here.
@@ -438,20 +452,6 @@ int Main(int argc, char** argv) {
   tile_csv << "n,sigma,optimized,random,seconds\n";
 
   const uint32_t two_max_n = std::strtoul(a["two-max-n"].c_str(), nullptr, 10);
-  // Degrees either side of a pixel's θ its lattice is chosen for:
-  // aligned-lattice* (`alignset render --lattice-window`) and
-  // aligned-tent-lattice* (--tent-window); nullopt after the error message.
-  auto window = [&a](const std::string& flag) -> std::optional<double> {
-    const double w = std::strtod(a[flag].c_str(), nullptr);
-    if (w >= 0.0 && w <= 10.0) return w;
-    std::fprintf(stderr, "render_bench: --%s must be in [0, 10] degrees, got %s\n", flag.c_str(),
-                 a[flag].c_str());
-    return std::nullopt;
-  };
-  const std::optional<double> lattice_window_flag = window("lattice-window");
-  const std::optional<double> tent_window_flag = window("tent-window");
-  if (!lattice_window_flag || !tent_window_flag) return 2;
-  const double lattice_window = *lattice_window_flag, tent_window = *tent_window_flag;
   for (uint32_t n : ns) {
     // Above two_max_n the two-direction variants fall back to one direction,
     // so the *-1dir ablation would repeat its parent.
