@@ -6,8 +6,8 @@
 // 9 normals x 3 offsets) at every dual point within N / 2, and the whole
 // choice.
 //
-//   build/bench/lattice_spectrum_bench --benchmark_repetitions=5 \
-//     --benchmark_report_aggregates_only=true
+//   build/bench/lattice_spectrum_bench --benchmark_repetitions=5
+//       --benchmark_report_aggregates_only=true   (one command line)
 #include <benchmark/benchmark.h>
 
 #include <vector>

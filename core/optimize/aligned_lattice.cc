@@ -511,13 +511,14 @@ CellShift PlainShift(uint32_t n, uint64_t seed) {
   const uint64_t sx = rng.Uniform(n);
   return {sx, rng.Uniform(n)};
 }
-Point2 TentShift(uint64_t seed) {
+
+}  // namespace
+
+Point2 TentLatticeShift(uint64_t seed) {
   Pcg32 rng(HashCombine(seed, 0x74656e74ULL));
   const double sx = rng.NextDouble();
   return {sx, rng.NextDouble()};
 }
-
-}  // namespace
 
 PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
   const CellShift shift = PlainShift(n, seed);
@@ -532,7 +533,7 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
 }
 
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed) {
-  const Point2 shift = TentShift(seed);
+  const Point2 shift = TentLatticeShift(seed);
   const double sx = shift.x, sy = shift.y;
   PointSet points(n);
   const double inv = 1.0 / n;
@@ -564,7 +565,7 @@ std::optional<uint32_t> LatticeGeneratorOf(const PointSet& points, uint64_t seed
   // its y gives g, up to the fold's two preimages and rounding.
   std::vector<int64_t> guesses;
   if (folded) {
-    const double sy = TentShift(seed).y;
+    const double sy = TentLatticeShift(seed).y;
     for (double u : {0.5 * points[1].y, 1.0 - 0.5 * points[1].y}) {
       guesses.push_back(static_cast<int64_t>(std::llround((u - sy) * n)));
     }

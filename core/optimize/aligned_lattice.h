@@ -128,6 +128,10 @@ PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 // integral: phi maps the uniform measure to itself).
 PointSet TentLatticePoints(uint32_t n, uint32_t g, uint64_t seed);
 
+// The continuous shift TentLatticePoints applies for realization `seed`
+// before the fold (in [0, 1)^2).
+Point2 TentLatticeShift(uint64_t seed);
+
 // TentLatticePoints when `folded`, else Rank1LatticePoints: the points of
 // a generator chosen with AlignedLatticeOptions::folded as given.
 PointSet LatticePoints(uint32_t n, uint32_t g, uint64_t seed, bool folded);

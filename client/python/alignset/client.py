@@ -43,7 +43,7 @@ def lattice_points(n, generator, shift, folded):
     shift in [0, 1)^2 per pixel and builds the points here: for a
     tent-lattice, shifting before the fold keeps its gain on smooth
     functions that a shift of the served (folded) points loses. Returns an
-    (n, 2) float64 array in [0, 1)^2, the same numbers as the C++ header
+    (n, 2) float64 array in [0, 1)^2, by the same recipe as the C++ header
     <alignset/lattice_points.h>."""
     n = int(n)
     generator = int(generator)

@@ -290,7 +290,9 @@ TEST(AlignedLattice, ProgressMovesWithinAPass) {
   options.threads = 2;
   auto with = ChooseAlignedLatticeGenerators(n, {{30.0}}, options, [&](double done, double total) {
     EXPECT_EQ(std::this_thread::get_id(), caller);
-    if (!seen.empty()) EXPECT_GT(done, seen.back());
+    if (!seen.empty()) {
+      EXPECT_GT(done, seen.back());
+    }
     seen.push_back(done);
     reported_total = total;
   });
