@@ -24,6 +24,7 @@ struct RenderOptions {
   int64_t seed = 1;
   ServiceOptions service;
   std::string reuse = "auto";
+  std::string lattices = "local";
 };
 
 std::string SamplerHelp() {
@@ -66,7 +67,8 @@ int Run(RenderOptions& o) {
   o.request.reuse_prepass = *render::ParsePrepassReuse(o.reuse);  // checked by the option
   o.request.size = static_cast<int>(o.size);
   o.request.seed = static_cast<uint64_t>(o.seed);
-  if (o.request.sampler == "aligned" || o.request.sampler == "aligned-exact") {
+  o.request.lattices_from_server = o.lattices == "server";
+  if (o.request.sampler == "aligned" || o.request.sampler == "aligned-exact" || o.request.lattices_from_server) {
     auto connect = ResolveConnectOptions(o.service);
     if (!connect.ok()) return ReportError("render", connect.status(), kExitUsage);
     o.request.server = *connect;
@@ -146,6 +148,11 @@ void AddRenderCommand(CLI::App& app) {
                  "aligned-lattice*, aligned-tent-lattice*: degrees either side of a pixel's θ its\n"
                  "lattice is chosen for (default 1; tent 2)")
       ->check(FiniteIn(0.0, 10.0));
+  c->add_option("--lattices", o->lattices,
+                 "aligned-lattice*, aligned-tent-lattice*: local (search here) or server (read the\n"
+                 "lattices a server has chosen and cached, --server; the same image, no search per render)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"local", "server"}));
   c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
   AddServiceOptions(c, &o->service);
   c->footer([] { return SamplerHelp(); });

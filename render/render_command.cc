@@ -46,6 +46,16 @@ StatusOr<RenderSummary> RunRender(
   if (r.spp < 1 || r.spp > 65536) {
     return Status::InvalidArgument("--spp must be in [1, 65536], got " + std::to_string(r.spp));
   }
+  if (r.lattices_from_server) {
+    if (r.sampler.rfind("aligned-lattice", 0) != 0 && r.sampler.rfind("aligned-tent-lattice", 0) != 0) {
+      return Status::InvalidArgument("lattices from a server are for the aligned-lattice* and "
+                                     "aligned-tent-lattice* samplers, not '" + r.sampler + "'");
+    }
+    if (r.lattice_window_deg) {
+      return Status::InvalidArgument("a server chooses its lattices for its own window (1 degree; "
+                                     "tent-folded 2): --lattice-window needs local lattices");
+    }
+  }
   const std::vector<PixelDirection> exact = GeometryDirections(*scene);
   auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp) : r.prepass);
   if (!prepass.ok()) return prepass.status();
@@ -87,7 +97,19 @@ StatusOr<RenderSummary> RunRender(
                    " two-direction sets from " + r.server.address;
   }
   const bool tent = r.sampler == "aligned-tent-lattice" || r.sampler == "aligned-tent-lattice-exact";
-  if (r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent) {
+  const bool lattice_sampler = r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent;
+  if (lattice_sampler && r.lattices_from_server) {
+    const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
+    auto client = ServiceClient::Connect(r.server);
+    if (!client.ok()) return client.status();
+    const auto pairs = NeededPairs(estimated_dirs ? estimated : exact, c.policy);
+    auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress, tent ? "tent-lattice" : "lattice");
+    if (!fetched.ok()) return fetched.status();
+    table = std::move(*fetched);
+    c.sets = &table;
+    summary.note = "180 one-direction and " + std::to_string(pairs.size()) + " two-direction " +
+                   (tent ? "tent-folded " : "") + "lattices from " + r.server.address;
+  } else if (lattice_sampler) {
     LatticeTableStats st;
     const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
     auto built = AlignedLatticeTable(

@@ -35,7 +35,13 @@ struct RenderRequest {
   // aligned-lattice*, aligned-tent-lattice*: the window of normals a
   // generator is chosen for (default 1 degree; tent kTentLatticeWindowDeg).
   std::optional<double> lattice_window_deg;
-  ConnectOptions server;       // aligned, aligned-exact only
+  // aligned-lattice*, aligned-tent-lattice*: read the lattices a server has
+  // chosen and cached (FetchAlignedSets with the construction) instead of
+  // searching for them here; the server's window is the default one, so a
+  // lattice_window_deg is refused with it. The image is the one the local
+  // search gives.
+  bool lattices_from_server = false;
+  ConnectOptions server;  // aligned, aligned-exact, and the lattices from a server
 };
 
 // What came out: the MSE against the exact image over edge and smooth pixels.

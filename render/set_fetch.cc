@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/optimize/aligned_lattice.h"
+
 namespace alignset::render {
 
 StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
-                                           const FetchProgressFn& progress) {
+                                           const FetchProgressFn& progress,
+                                           const std::string& construction) {
+  const bool lattice = construction == "lattice" || construction == "tent-lattice";
+  if (!lattice && !construction.empty() && construction != "optimized") {
+    return Status::InvalidArgument("a render reads optimized sets or lattices, not '" + construction + "'");
+  }
+  const std::string what = lattice ? construction : "optimize";
   auto report = [&](const std::string& stage, double done, double total, const std::string& d) {
     if (progress) progress(stage, done, total, d);
   };
@@ -27,22 +35,26 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
   PrecomputeSpec one;
   one.n = {n};
   one.space = 1;
-  if (Status s = precompute(one, "optimize 1-dir space N=" + std::to_string(n)); !s.ok()) return s;
+  one.construction = construction;
+  if (Status s = precompute(one, what + " 1-dir space N=" + std::to_string(n)); !s.ok()) return s;
   if (!pairs.empty()) {
     PrecomputeSpec two;
     two.n = {n};
     two.space = 0;
+    two.construction = construction;
     for (const auto& [a, b] : pairs) two.keys.push_back({a, b});
-    if (Status s = precompute(two, "optimize 2-dir keys N=" + std::to_string(n)); !s.ok()) return s;
+    if (Status s = precompute(two, what + " 2-dir keys N=" + std::to_string(n)); !s.ok()) return s;
   }
 
   AlignedSetTable table;
   table.n = n;
+  table.folded = construction == "tent-lattice";
   table.one.resize(180);
   std::vector<SetRequest> items;
   // The client library's key -> request mapping (<alignset/pixel_sampler.h>).
   for (int deg = 0; deg < 180; ++deg) items.push_back(*RequestFor({SetChoice::Kind::kOne, deg, 0}, n));
   for (const auto& [a, b] : pairs) items.push_back(*RequestFor({SetChoice::Kind::kTwo, a, b}, n));
+  for (SetRequest& item : items) item.construction = construction;
   const std::string stage = "fetch sets N=" + std::to_string(n);
   for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
     const size_t end = std::min(items.size(), begin + kMaxBatchItems);
@@ -52,6 +64,15 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
     for (size_t i = begin; i < end; ++i) {
       BatchItem& item = (*batch)[i - begin];
       if (!item.status.ok()) return item.status;
+      if (lattice) {
+        // The served generator, aligned already: the same unfolded lattice
+        // the local table would hold.
+        const uint32_t g = item.set.info.lattice_generator;
+        if (g == 0) {
+          return Status::FailedPrecondition("the server does not report lattice generators (update it)");
+        }
+        item.set.points = Rank1LatticePoints(n, g, 0);
+      }
       if (i < 180) {
         const int deg = static_cast<int>(i);
         if (item.set.info.served_deg.size() != 1 || item.set.info.served_deg[0] != deg) {

@@ -26,8 +26,19 @@ using FetchProgressFn =
 //     through the batch call GetAlignedSets (at most kMaxBatchItems a call):
 //     cache hits, aligned by the server (swap / invert).
 // A failed call comes back as its Status (the server's message).
+//
+// construction "lattice" or "tent-lattice": the server's aligned lattices
+// instead (SetRequest::construction), so that a render reads the lattices a
+// server has chosen and cached instead of searching for them itself (seconds
+// to minutes a render at N = 4096). The table then holds what
+// AlignedLatticeTable (render/lattice_sets.h) would build locally with the
+// server's window: each served set's generator (SetInfo::lattice_generator)
+// as the unfolded lattice Rank1LatticePoints(n, g, 0), marked folded for a
+// tent-lattice, since a pixel's shift goes before the fold. A server that
+// does not report generators is FAILED_PRECONDITION.
 StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
-                                           const FetchProgressFn& progress);
+                                           const FetchProgressFn& progress,
+                                           const std::string& construction = "");
 
 }  // namespace alignset::render

@@ -6,11 +6,13 @@
 #include <cmath>
 
 #include "render/direction.h"
+#include "render/lattice_sets.h"
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/set_fetch.h"
 #include "render/spectral_estimator.h"
+#include "core/optimize/aligned_lattice.h"
 #include "core/util/hash.h"
 #include <alignset/client.h>
 #include <alignset/npy.h>
@@ -151,6 +153,65 @@ TEST(RenderE2e, TheCommandLineExportsTheSpaceAndRendersWithAlignedSets) {
   for (size_t i = 0; i < ref.size(); ++i) mse += (pixels->values[i] - ref[i]) * (pixels->values[i] - ref[i]) / ref.size();
   EXPECT_LT(mse, 1e-3);  // 16 samples of a [0, 1] integrand: far below 1/16
   EXPECT_GT(mse, 0.0);
+}
+
+// A render can read its aligned lattices from a server instead of searching
+// for them: the server's generators (the metadata's lattice_generator) give
+// the table the local search builds, entry for entry, plain and tent-folded,
+// and the command line renders the same image both ways.
+TEST(RenderE2e, LatticesFromAServerAreTheLocalSearchsLattices) {
+  TempDir dir;
+  ServerProcess server(dir.path(), {"--workers", "2", "--threads-per-worker", "1"});
+  ASSERT_EQ(server.error(), "");
+  auto client = e2e::ConnectTo(server);
+  ASSERT_NE(client, nullptr);
+  constexpr uint32_t kN = 64;
+  const Scene scene = *MakeScene("antialias", 64, 64, 2);
+  const std::vector<PixelDirection> exact = GeometryDirections(scene);
+  const AlignedPolicy policy;
+  const std::set<std::pair<int, int>> pairs = NeededPairs(exact, policy);
+  for (bool folded : {false, true}) {
+    SCOPED_TRACE(folded ? "tent-lattice" : "lattice");
+    auto local = AlignedLatticeTable(kN, {&exact}, policy, DefaultLatticeWindowDeg(folded), 2, nullptr, {}, folded);
+    ASSERT_TRUE(local.ok()) << local.status().message();
+    auto served = FetchAlignedSets(*client, kN, pairs, {}, folded ? "tent-lattice" : "lattice");
+    ASSERT_TRUE(served.ok()) << served.status().message();
+    EXPECT_EQ(served->folded, folded);
+    int compared = 0;
+    for (int deg = 0; deg < 180; ++deg) {
+      if (local->One(deg) == nullptr) continue;
+      ASSERT_NE(served->One(deg), nullptr) << deg;
+      EXPECT_EQ(*served->One(deg), *local->One(deg)) << deg << " deg";
+      ++compared;
+    }
+    for (const auto& [key, points] : local->two) {
+      ASSERT_NE(served->Two(key.first, key.second), nullptr);
+      EXPECT_EQ(*served->Two(key.first, key.second), points) << key.first << ", " << key.second;
+      ++compared;
+    }
+    EXPECT_GE(compared, 20);  // the image's degrees and pairs, not a vacuous check
+    EXPECT_FALSE(local->two.empty());
+  }
+  EXPECT_EQ(FetchAlignedSets(*client, kN, pairs, {}, "net").status().code(), Status::Code::kInvalidArgument);
+
+  const std::string cli = std::string(ALIGNSET_CLI_PATH) + " render --scene shadow --size 32 -n 64 -s 3 ";
+  const std::string here = dir.path() + "/local.npy", there = dir.path() + "/served.npy";
+  auto r = e2e::RunCommand(cli + "--sampler aligned-tent-lattice-exact -o " + here);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = e2e::RunCommand(cli + "--sampler aligned-tent-lattice-exact --lattices server --server " + server.address() +
+                      " -o " + there);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto a = ReadNpy(here), b = ReadNpy(there);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->values, b->values);
+  // The server's window is fixed, and only lattice samplers read lattices.
+  r = e2e::RunCommand(cli + "--sampler aligned-lattice-exact --lattices server --lattice-window 2 --server " +
+                      server.address() + " -o " + there);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--lattice-window needs local lattices"), std::string::npos) << r.output;
+  r = e2e::RunCommand(cli + "--sampler owen-sobol --lattices server --server " + server.address() + " -o " + there);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("aligned-lattice"), std::string::npos) << r.output;
 }
 
 // The renderer estimates in process (core/analysis); a renderer without the
