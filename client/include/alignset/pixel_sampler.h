@@ -21,7 +21,11 @@
 //     ShiftPoint (<alignset/pixel_shift.h>): the set keeps its spectrum at
 //     every integer frequency while neighbouring pixels' errors no longer
 //     repeat one another. There is no per-pixel realization: a realization
-//     (SetRequest::realization) is another set, chosen per request.
+//     (SetRequest::realization) is another set, chosen per request. A
+//     "lattice" or "tent-lattice" set is shifted by building the pixel's
+//     points from its generator instead (ShiftedLatticePoints,
+//     <alignset/lattice_points.h>): for a tent-lattice the shift must come
+//     before the fold, which ShiftPoint on the served points cannot do.
 //
 // The sets are those of Werner, Hanika and Dachsbacher, "Optimized and
 // Aligned Anisotropic Monte Carlo Sampling Patterns". Header-only.
