@@ -98,8 +98,8 @@ StatusOr<RenderSummary> RunRender(
   }
   const bool tent = r.sampler == "aligned-tent-lattice" || r.sampler == "aligned-tent-lattice-exact";
   const bool lattice_sampler = r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent;
+  const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
   if (lattice_sampler && r.lattices_from_server) {
-    const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
     auto client = ServiceClient::Connect(r.server);
     if (!client.ok()) return client.status();
     const auto pairs = NeededPairs(estimated_dirs ? estimated : exact, c.policy);
@@ -111,7 +111,6 @@ StatusOr<RenderSummary> RunRender(
                    (tent ? "tent-folded " : "") + "lattices from " + r.server.address;
   } else if (lattice_sampler) {
     LatticeTableStats st;
-    const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
     auto built = AlignedLatticeTable(
         r.spp, {estimated_dirs ? &estimated : &exact}, c.policy,
         r.lattice_window_deg.value_or(DefaultLatticeWindowDeg(tent)), r.threads, &st,

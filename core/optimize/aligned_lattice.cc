@@ -501,8 +501,9 @@ StatusOr<AlignedLatticeChoice> ChooseAlignedLatticeGenerator(
 
 namespace {
 
-// The shifts of realization `seed`: whole cells for the plain lattice, a
-// continuous shift for the folded one.
+// The shift of the plain lattice's realization `seed`: whole cells (plus
+// the half cell Rank1LatticePoints adds); the folded lattice's is continuous
+// (TentLatticeShift).
 struct CellShift {
   uint64_t x, y;
 };
