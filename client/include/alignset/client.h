@@ -100,7 +100,7 @@ struct SetInfo {
   // For a lattice or tent-lattice: the served set's generator g (aligned
   // already): the set is {frac(i (1, g) / N + s)} for some shift s, folded
   // after the shift for a tent-lattice. A renderer draws its own s per
-  // pixel with LatticePoints (<alignset/lattice_points.h>). 0 otherwise,
+  // pixel with ShiftedLatticePoints (<alignset/lattice_points.h>). 0 otherwise,
   // and from a server too old to send it.
   uint32_t lattice_generator = 0;
 };

@@ -15,7 +15,7 @@
 // builds each pixel's points here, with PixelShift (<alignset/pixel_shift.h>)
 // as the shift, instead of ShiftPoint on the served points.
 //
-// Header-only; the same numbers on every platform.
+// Header-only.
 
 #include <cmath>
 #include <cstdint>
