@@ -24,8 +24,10 @@
 
 namespace alignset {
 
-// Point i (0 <= i < n) of the lattice of generator g shifted by `shift`
-// (both coordinates in [0, 1)), folded after the shift when `folded`.
+// Point i (0 <= i < n, n >= 1) of the lattice of generator g shifted by
+// `shift` (both coordinates in [0, 1)), folded after the shift when
+// `folded`. No checks here (an inner loop): g comes from the server, the
+// shift from PixelShift.
 inline Point2 ShiftedLatticePoint(uint32_t n, uint32_t g, uint32_t i, Point2 shift, bool folded) {
   const double inv = 1.0 / n;
   double x = static_cast<double>(i) * inv + shift.x;
