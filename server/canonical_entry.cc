@@ -3,6 +3,8 @@
 #include <bit>
 #include <cstring>
 
+#include <spdlog/spdlog.h>
+
 #include "core/optimize/aligned_lattice.h"
 
 namespace alignset::server {
@@ -42,6 +44,12 @@ std::optional<uint32_t> CanonicalEntry::LatticeGenerator(uint64_t seed, bool fol
   if (!generator_read_) {
     generator_ = LatticeGeneratorOf(record_.points, seed, folded);
     generator_read_ = true;
+    // Once per entry, not per request: the set is still served, without
+    // its generator (lattice_generator 0).
+    if (!generator_) {
+      spdlog::warn("{}: the cached points are not the lattice of any generator",
+                   storage::KeyToString(record_.key));
+    }
   }
   return generator_;
 }

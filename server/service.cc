@@ -161,8 +161,6 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
       if (g) {
         md->set_lattice_generator(
             MapLatticeGenerator(key.n, *g, canon.ops.swap, canon.ops.invert, canon.ops.invert_y));
-      } else {
-        spdlog::warn("{}: the cached points are not the lattice of any generator", KeyString(key));
       }
     }
     return;

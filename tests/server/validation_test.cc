@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
+#include "core/optimize/aligned_lattice.h"
 #include "server/canonical_entry.h"
 #include "server/config.h"
 #include "server/set_lru.h"
@@ -122,6 +124,22 @@ TEST(CanonicalEntry, EncodesAlignedPointsAsLittleEndianPairs) {
   EXPECT_EQ(v[0], 0.125);
   EXPECT_EQ(v[1], 0.25);
   EXPECT_EQ(e.Encoded({.swap = true}).get(), e.Encoded({.swap = true}).get());  // built once
+}
+
+// A lattice entry tells its generator from its points; an entry whose points
+// are no lattice of its realization tells none (and is still served).
+TEST(CanonicalEntry, ReadsALatticesGeneratorBackFromItsPoints) {
+  for (bool folded : {false, true}) {
+    storage::SetRecord lattice;
+    lattice.points = LatticePoints(256, 77, 5, folded);
+    const CanonicalEntry e(lattice);
+    EXPECT_EQ(e.LatticeGenerator(5, folded), std::optional<uint32_t>(77u));
+    EXPECT_EQ(e.LatticeGenerator(5, folded), std::optional<uint32_t>(77u));  // read once, kept
+    storage::SetRecord other;
+    other.points = LatticePoints(256, 77, 6, folded);  // realization 6's points
+    EXPECT_FALSE(CanonicalEntry(other).LatticeGenerator(5, folded).has_value());
+    EXPECT_EQ(*CanonicalEntry(other).Encoded({}), EncodePoints(other.points));
+  }
 }
 
 }  // namespace
