@@ -13,6 +13,7 @@
 #include "core/spectral/frequency_set.h"
 #include "core/util/hash.h"
 #include "core/optimize/optimizer.h"
+#include "tests/unit_square.h"
 
 namespace alignset {
 namespace {
@@ -184,21 +185,12 @@ PointSet GridPoints() {
   return p;
 }
 
-void ExpectInUnitSquare(const PointSet& p) {
-  for (const Point2& q : p) {
-    EXPECT_GE(q.x, 0.0);
-    EXPECT_LT(q.x, 1.0);
-    EXPECT_GE(q.y, 0.0);
-    EXPECT_LT(q.y, 1.0);
-  }
-}
-
 TEST(Align, GroupLawsHoldBitForBit) {
   const PointSet p = GridPoints();
   EXPECT_EQ(Align(p, {}), p);  // the identity on grid points
   for (const AlignOps& a : AllElements()) {
     const PointSet pa = Align(p, a);
-    ExpectInUnitSquare(pa);
+    EXPECT_EQ(testing::OutsideUnitSquare(pa), "");
     EXPECT_EQ(Compose(a, Inverse(a)), AlignOps{});
     EXPECT_EQ(Compose(Inverse(a), a), AlignOps{});
     EXPECT_EQ(Align(pa, Inverse(a)), p) << ToString(a);
@@ -236,15 +228,15 @@ TEST(Align, OffGridValuesMoveByAtMostHalfAGridStep) {
   PointSet p;
   for (double x : tiny) p.push_back({x, 0.5});
   const PointSet q = Align(p, {});
-  ExpectInUnitSquare(q);
+  EXPECT_EQ(testing::OutsideUnitSquare(q), "");
   for (size_t i = 0; i < p.size(); ++i) EXPECT_LE(std::abs(q[i].x - p[i].x), 0x1.0p-54);
   // Once on the grid the group acts exactly, whatever the input was.
   for (const AlignOps& a : AllElements()) {
     EXPECT_EQ(Align(Align(p, a), Inverse(a)), q);
-    ExpectInUnitSquare(Align(p, a));
+    EXPECT_EQ(testing::OutsideUnitSquare(Align(p, a)), "");
   }
   // Out-of-range inputs are wrapped rather than trusted.
-  ExpectInUnitSquare(Align({{1.0, -0.25}, {-1e-17, 2.5}}, {true, true, false}));
+  EXPECT_EQ(testing::OutsideUnitSquare(Align({{1.0, -0.25}, {-1e-17, 2.5}}, {true, true, false})), "");
 }
 
 // --- Integration: an optimized canonical set aligned to four quadrants ----
@@ -286,7 +278,7 @@ TEST(AlignIntegration, OptimizedSetIsDarkAlongEveryRequestedDirection) {
     ASSERT_TRUE(c.ok());
     ASSERT_EQ(c->key.phi1, phi);
     const PointSet aligned = Align(result->points, c->ops);
-    ExpectInUnitSquare(aligned);
+    EXPECT_EQ(testing::OutsideUnitSquare(aligned), "");
     const double dark = MeanPeriodogram(aligned, params, t, &engine);
     for (int other : requests) {
       if (other == t) continue;
@@ -319,7 +311,7 @@ TEST(AlignIntegration, QuarterDegreeSetIsDarkAlongEveryRequestedDirection) {
     ASSERT_EQ(c->key, (CanonicalDirections{1, 10, 10, 1}));
     ASSERT_EQ(c->served_exact_deg, std::vector<double>{t});
     const PointSet aligned = Align(result->points, c->ops);
-    ExpectInUnitSquare(aligned);
+    EXPECT_EQ(testing::OutsideUnitSquare(aligned), "");
     const double dark = MeanPeriodogram(aligned, params, t, &engine);
     for (double other : requests) {
       if (other == t) continue;

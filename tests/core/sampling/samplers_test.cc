@@ -15,6 +15,7 @@
 #include "core/sampling/sampler_radical_inverse.h"
 #include "core/sampling/sampler_stratified.h"
 #include "core/sampling/sampler_util.h"
+#include "tests/unit_square.h"
 
 namespace alignset {
 namespace {
@@ -58,19 +59,12 @@ uint32_t Bin(double v, uint32_t cells) { return static_cast<uint32_t>(std::floor
   return ::testing::AssertionSuccess();
 }
 
-void ExpectInUnitSquare(const PointSet& p, const std::string& what) {
-  for (const Point2& q : p) {
-    ASSERT_TRUE(q.x >= 0.0 && q.x < 1.0 && q.y >= 0.0 && q.y < 1.0)
-        << what << ": (" << q.x << ", " << q.y << ")";
-  }
-}
-
 TEST(SamplerRegistry, EverySamplerMakesNPointsInTheSquareDeterministically) {
   const std::set<std::string> seedless = {"grid", "halton", "hammersley", "sobol"};
   for (const std::string& name : SamplerNames()) {
     const PointSet a = Make(name, 256, 5);
     ASSERT_EQ(a.size(), 256u) << name;
-    ExpectInUnitSquare(a, name);
+    ASSERT_EQ(testing::OutsideUnitSquare(a), "") << name;
     EXPECT_EQ(Make(name, 256, 5), a) << name << " is not deterministic";
     if (seedless.count(name)) {
       EXPECT_EQ(Make(name, 256, 6), a) << name;
