@@ -85,30 +85,25 @@ StatusOr<RenderSummary> RunRender(
   c.estimated = &estimated;
   AlignedSetTable table;
   ShiftTile tile;
-  if (r.sampler == "aligned" || r.sampler == "aligned-exact") {
-    auto client = ServiceClient::Connect(r.server);
-    if (!client.ok()) return client.status();
-    const auto pairs = NeededPairs(r.sampler == "aligned" ? estimated : exact, c.policy);
-    auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress);
-    if (!fetched.ok()) return fetched.status();
-    table = std::move(*fetched);
-    c.sets = &table;
-    summary.note = "180 one-direction and " + std::to_string(pairs.size()) +
-                   " two-direction sets from " + r.server.address;
-  }
   const bool tent = r.sampler == "aligned-tent-lattice" || r.sampler == "aligned-tent-lattice-exact";
   const bool lattice_sampler = r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent;
-  const bool estimated_dirs = r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
-  if (lattice_sampler && r.lattices_from_server) {
+  const bool optimized_sampler = r.sampler == "aligned" || r.sampler == "aligned-exact";
+  // The pixels' estimated directions, or the geometry's (the -exact samplers).
+  const bool estimated_dirs =
+      r.sampler == "aligned" || r.sampler == "aligned-lattice" || r.sampler == "aligned-tent-lattice";
+  if (optimized_sampler || (lattice_sampler && r.lattices_from_server)) {
+    // From the server: the optimized sets, or the lattices it has chosen.
+    const std::string construction = optimized_sampler ? "" : tent ? "tent-lattice" : "lattice";
     auto client = ServiceClient::Connect(r.server);
     if (!client.ok()) return client.status();
     const auto pairs = NeededPairs(estimated_dirs ? estimated : exact, c.policy);
-    auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress, tent ? "tent-lattice" : "lattice");
+    auto fetched = FetchAlignedSets(**client, r.spp, pairs, progress, construction);
     if (!fetched.ok()) return fetched.status();
     table = std::move(*fetched);
     c.sets = &table;
     summary.note = "180 one-direction and " + std::to_string(pairs.size()) + " two-direction " +
-                   (tent ? "tent-folded " : "") + "lattices from " + r.server.address;
+                   (optimized_sampler ? "sets" : tent ? "tent-folded lattices" : "lattices") + " from " +
+                   r.server.address;
   } else if (lattice_sampler) {
     LatticeTableStats st;
     auto built = AlignedLatticeTable(
