@@ -67,19 +67,19 @@ int main(int argc, char** argv) {
   if (!InUnitSquare(shifted) || alignset::PixelShift(7, 3, 4) == alignset::PixelShift(7, 4, 3)) {
     return Fail("PixelShift / ShiftPoint misbehave");
   }
-  // A served tent-lattice tells its generator, and a pixel's own shift goes
-  // before the fold (<alignset/lattice_points.h>).
-  alignset::SetRequest tent_request;
-  tent_request.n = 64;
-  tent_request.directions_deg = {120.0};
-  tent_request.construction = "tent-lattice";
-  auto tent = (*client)->GetAlignedSet(tent_request, call);
+  // A served tent-lattice, asked for through the recipe, tells its
+  // generator, and a pixel's own shift goes before the fold
+  // (<alignset/lattice_points.h>, PixelPoints of <alignset/pixel_sampler.h>).
+  const auto tent_request =
+      alignset::RequestFor({alignset::SetChoice::Kind::kOne, 120, 0}, 64, "tent-lattice");
+  auto tent = (*client)->GetAlignedSet(*tent_request, call);
   if (!tent.ok()) return Fail("GetAlignedSet tent-lattice: " + tent.status().ToString());
   const uint32_t g = tent->info.lattice_generator;
   const alignset::PointSet own =
       alignset::ShiftedLatticePoints(64, g, alignset::PixelShift(7, 3, 4), true);
-  if (g == 0 || std::gcd(g, 64u) != 1 || own.size() != 64 || !InUnitSquare(own)) {
-    return Fail("tent-lattice generator / ShiftedLatticePoints misbehave");
+  if (g == 0 || std::gcd(g, 64u) != 1 || own.size() != 64 || !InUnitSquare(own) ||
+      alignset::PixelPoints(*tent, alignset::PixelShift(7, 3, 4)) != own) {
+    return Fail("tent-lattice generator / ShiftedLatticePoints / PixelPoints misbehave");
   }
   // The set choice of the recipe (<alignset/pixel_sampler.h>): 150.4 deg
   // and 29.6 deg are served as 150 and 30, a pair of non-axis directions; its

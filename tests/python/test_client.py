@@ -180,6 +180,14 @@ class ServerTest(unittest.TestCase):
         exact = (np.e - 1) / 3
         self.assertLess(abs(before.mean() - exact), 4 * before.std() / 8 + 1e-15)
         self.assertLess(5 * before.var(), after.var())
+        # The recipe's pixel_points does the same for any served set.
+        shift = (0.3, 0.85)
+        np.testing.assert_array_equal(t.pixel_points(shift),
+                                      alignset.lattice_points(64, g, shift, True))
+        o = self.client.get_set(64, 30)
+        np.testing.assert_array_equal(o.pixel_points(shift), np.mod(o.points + shift, 1.0))
+        with self.assertRaises(ValueError):
+            o.pixel_points((0.2, 1.0))
         with self.assertRaises(ValueError):
             alignset.lattice_points(64, 2, (0.1, 0.2), True)
         with self.assertRaises(ValueError):

@@ -125,10 +125,12 @@ struct SetRequest {
   // keys), 4 quarter degrees (181 keys). Two directions: whole degrees.
   uint32_t steps_per_degree = 0;
   // How the set is made: "" or "optimized" (the default, the optimized
-  // sets), "lattice" (an aligned rank-1 lattice) or "net" (an aligned
-  // (0,m,2)-net, N a power of two), each cached apart from the others. Another name: INVALID_ARGUMENT from the server. A server
-  // too old to know constructions would answer with an optimized set; the
-  // client then fails the call with FAILED_PRECONDITION instead.
+  // sets), "lattice" (an aligned rank-1 lattice), "tent-lattice" (an
+  // aligned rank-1 lattice folded by the tent map) or "net" (an aligned
+  // (0,m,2)-net, N a power of two), each cached apart from the others.
+  // Another name: INVALID_ARGUMENT from the server. A server too old to
+  // know constructions would answer with an optimized set; the client then
+  // fails the call with FAILED_PRECONDITION instead.
   std::string construction = "";
 };
 

@@ -32,6 +32,26 @@ class AlignedSet:
     points: np.ndarray
     metadata: object
 
+    def pixel_points(self, shift):
+        """A pixel's own randomization of this set under `shift` in [0, 1)^2
+        (one uniform shift per pixel): a lattice or tent-lattice rebuilt from
+        its generator with the shift before the fold (lattice_points), any
+        other set shifted on the torus. Unbiased either way; a tent-lattice
+        from a server too old to tell its generator is shifted on the torus
+        too, and then integrates smooth non-periodic shading only about as
+        well as Owen-Sobol. The recipe of PixelPoints in the C++ header
+        <alignset/pixel_sampler.h>."""
+        sx, sy = (float(v) for v in shift)
+        if not (0.0 <= sx < 1.0 and 0.0 <= sy < 1.0):
+            raise ValueError("shift must lie in [0, 1)^2")
+        construction = getattr(self.metadata, "construction", "")
+        generator = getattr(self.metadata, "lattice_generator", 0)
+        if construction in ("lattice", "tent-lattice") and generator:
+            return lattice_points(len(self.points), generator, (sx, sy),
+                                  construction == "tent-lattice")
+        pts = self.points + np.array([sx, sy])
+        return np.where(pts >= 1.0, pts - 1.0, pts)
+
 
 def lattice_points(n, generator, shift, folded):
     """Points of a served lattice under a shift of your own: the rank-1
