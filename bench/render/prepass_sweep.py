@@ -24,15 +24,16 @@ def main():
     ap = argparse.ArgumentParser()
     for k in ("raw", "n", "seeds", "ms", "windows", "out"):
         ap.add_argument("--" + k, required=True)
+    ap.add_argument("--kind", default="edges")
     a = ap.parse_args()
     seeds, ms, windows = a.seeds.split(), a.ms.split(), a.windows.split()
     out = ["# Pre-pass size and lattice window at N = %s, every sample counted\n" % a.n,
            "Written by `bench/render/prepass_sweep.py` from `bash bench/render/prepass_sweep.sh` "
-           "(scene seeds %s). `aligned-lattice+reuse` with the pre-pass edgesM and lattices chosen "
+           "(scene seeds %s). `aligned-lattice+reuse` with the pre-pass %sM and lattices chosen "
            "for ±W degrees around the estimated θ, against Owen-Sobol and the best of Owen-Sobol, "
            "pmj02bn, the rank-1 lattice and screen-space rank-1, each rendered at N + M; edge "
            "pixels; the baseline's MSE over the lattice's (above 1: the lattice wins), geometric "
-           "mean over seeds and range.\n" % " ".join(seeds)]
+           "mean over seeds and range.\n" % (" ".join(seeds), a.kind)]
     for scene in ("antialias", "shadow"):
         out.append("\n## %s\n" % scene)
         out.append("| M | total | W | Owen-Sobol / lattice | best baseline / lattice |")
