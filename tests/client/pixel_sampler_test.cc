@@ -10,6 +10,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/optimize/aligned_lattice.h"
 #include "core/sampling/owen_sobol.h"
