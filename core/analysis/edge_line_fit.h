@@ -93,8 +93,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
 // at its patch's best offset, and must rest on at least two of the centre's
 // own crossings; the refinement pools each patch's scatter about its own
 // inliers' centroid. Steps 3-4 and the second line as in EstimateEdgeLines,
-// the shares over all patches' crossings. INVALID_ARGUMENT for a missing
-// centre, an invalid patch or options out of range.
+// the shares over all patches' crossings; with a second line (a corner),
+// the first line's direction is then fitted again on the crossings off the
+// second line's band, since the vertex's crossings lie in both bands and
+// pull a half-line's fit towards the other edge. INVALID_ARGUMENT for a
+// missing centre, an invalid patch or options out of range.
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::array<const SampledPatch*, 9>& pixels,
                                                      const EdgeLineOptions& options = {});
 // The same over a larger odd square block (5 x 5, ...), row by row, the
