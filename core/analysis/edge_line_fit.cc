@@ -305,11 +305,12 @@ void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& be
     // direction towards the second edge. Its direction is fitted again on
     // the crossings off the second line's band (the second line never had
     // them), kept if the refit is nearer the first edge than the second.
-    // Measured on the shadow scene's stacked fits (docs/rendering.md): the
-    // first direction's median error on two-edge pixels 1.3-1.6 -> 0.5-0.7
-    // degrees at N = 4096 and the aligned lattices' edge error 2-5% lower
-    // at N = 256, 1024 and 4096 on twelve scene seeds; on the image-plane
-    // pooled fit (antialias) it moved the edge error by -1% to +1.7%, so
+    // Measured on the shadow scene's stacked fits
+    // (bench/results/render_corner_refit.md): the first direction's median
+    // error on two-edge pixels 1.3-1.6 -> 0.5-0.7 degrees at N = 4096, and
+    // the aligned lattices' edge error 2.4-3.5% lower at N = 256, 1024 and
+    // 4096 over twelve scene seeds; on the image-plane pooled fit
+    // (antialias) the same refit moved the edge error by -3% to +2%, so
     // that fit, and a single patch's, keep the first line as found.
     std::vector<size_t> off_second;
     {
