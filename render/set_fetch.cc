@@ -52,9 +52,10 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
   table.one.resize(180);
   std::vector<SetRequest> items;
   // The client library's key -> request mapping (<alignset/pixel_sampler.h>).
-  for (int deg = 0; deg < 180; ++deg) items.push_back(*RequestFor({SetChoice::Kind::kOne, deg, 0}, n));
-  for (const auto& [a, b] : pairs) items.push_back(*RequestFor({SetChoice::Kind::kTwo, a, b}, n));
-  for (SetRequest& item : items) item.construction = construction;
+  for (int deg = 0; deg < 180; ++deg) {
+    items.push_back(*RequestFor({SetChoice::Kind::kOne, deg, 0}, n, construction));
+  }
+  for (const auto& [a, b] : pairs) items.push_back(*RequestFor({SetChoice::Kind::kTwo, a, b}, n, construction));
   const std::string stage = "fetch sets N=" + std::to_string(n);
   for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
     const size_t end = std::min(items.size(), begin + kMaxBatchItems);
