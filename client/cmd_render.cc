@@ -148,6 +148,12 @@ void AddRenderCommand(CLI::App& app) {
                  "aligned-lattice*, aligned-tent-lattice*: degrees either side of a pixel's θ its\n"
                  "lattice is chosen for (default 1; tent 2)")
       ->check(FiniteIn(0.0, 10.0));
+  c->add_option("--lattice-size-span", o->request.lattice_size_span,
+                 "aligned-lattice* with local lattices: each key's lattice may have N - SPAN ... N points,\n"
+                 "the size whose generator scores best for its directions (a pixel spends at most N;\n"
+                 "the search costs SPAN + 1 times as much)")
+      ->capture_default_str()
+      ->check(IntegerIn(0, 1024));
   c->add_option("--lattices", o->lattices,
                  "aligned-lattice*, aligned-tent-lattice*: local (search here) or server (read the\n"
                  "lattices a server has chosen and cached, --server; the same image, no search per render)")

@@ -26,16 +26,27 @@ namespace alignset::render {
 // aligned sampler reads either.
 struct LatticeTableStats {
   size_t one = 0, two = 0;  // served degrees and pairs in the table
-  size_t searched = 0;      // generator searches: one per canonical key
+  size_t searched = 0;      // generator searches: one per canonical key (and size)
+  size_t smaller = 0;       // canonical keys given fewer than N points (size_span)
+  double mean_points = 0.0; // points per canonical key, on average
   double seconds = 0.0;
 };
 //
 // folded (sampler aligned-tent-lattice): the generators are chosen for the
 // tent-folded lattice (AlignedLatticeOptions::folded) and the table is
 // marked folded: a pixel's shift goes before the fold.
+//
+// size_span > 0: each key's lattice may have N' in [N - size_span, N] points
+// instead of N, the size whose chosen generator scores best (the score is
+// the exact variance of the window's edges with N' points, so fewer points
+// win only where their lattice lies better along the key's directions; ties
+// go to the larger). A pixel then spends at most N samples. The search
+// costs size_span + 1 times as much. INVALID_ARGUMENT for a span that
+// leaves N' below 16.
 StatusOr<AlignedSetTable> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats = nullptr,
-    const std::function<void(double done, double total)>& progress = {}, bool folded = false);
+    const std::function<void(double done, double total)>& progress = {}, bool folded = false,
+    uint32_t size_span = 0);
 
 }  // namespace alignset::render

@@ -56,6 +56,17 @@ StatusOr<RenderSummary> RunRender(
                                      "tent-folded 2): --lattice-window needs local lattices");
     }
   }
+  if (r.lattice_size_span > 0) {
+    if (r.sampler.rfind("aligned-lattice", 0) != 0 || r.lattices_from_server) {
+      return Status::InvalidArgument("--lattice-size-span is for the aligned-lattice* samplers with local "
+                                     "lattices, not '" + r.sampler + "'" +
+                                     (r.lattices_from_server ? " from a server" : ""));
+    }
+    if (r.spp < 16 || r.lattice_size_span > r.spp - 16) {
+      return Status::InvalidArgument("--lattice-size-span " + std::to_string(r.lattice_size_span) +
+                                     " leaves fewer than 16 points of --spp " + std::to_string(r.spp));
+    }
+  }
   const std::vector<PixelDirection> exact = GeometryDirections(*scene);
   auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp) : r.prepass);
   if (!prepass.ok()) return prepass.status();
@@ -109,15 +120,21 @@ StatusOr<RenderSummary> RunRender(
     auto built = AlignedLatticeTable(
         r.spp, {estimated_dirs ? &estimated : &exact}, c.policy,
         r.lattice_window_deg.value_or(DefaultLatticeWindowDeg(tent)), r.threads, &st,
-        [&](double done, double total) { progress("lattices", done, total, ""); }, tent);
+        [&](double done, double total) { progress("lattices", done, total, ""); }, tent, r.lattice_size_span);
     if (!built.ok()) return built.status();
     table = std::move(*built);
     c.sets = &table;
-    char line[160];
+    char line[240];
     std::snprintf(line, sizeof line,
-                  "%zu one-direction and %zu two-direction %slattices (%zu searches, one per canonical key) in %.2f s",
-                  st.one, st.two, tent ? "tent-folded " : "", st.searched, st.seconds);
+                  "%zu one-direction and %zu two-direction %slattices (%zu searches, one per canonical key%s) in %.2f s",
+                  st.one, st.two, tent ? "tent-folded " : "", st.searched,
+                  r.lattice_size_span > 0 ? " and size" : "", st.seconds);
     summary.note = line;
+    if (r.lattice_size_span > 0) {
+      std::snprintf(line, sizeof line, "; %zu keys below N, %.1f points a key on average", st.smaller,
+                    st.mean_points);
+      summary.note += line;
+    }
   }
   if (r.sampler == "screen-space-rank1") {
     auto t = OptimizeShiftTile(r.spp, ShiftTileOptions{});

@@ -35,6 +35,10 @@ struct RenderRequest {
   // aligned-lattice*, aligned-tent-lattice*: the window of normals a
   // generator is chosen for (default 1 degree; tent kTentLatticeWindowDeg).
   std::optional<double> lattice_window_deg;
+  // aligned-lattice* (local search): each key's lattice may have N' in
+  // [N - span, N] points, the size whose generator scores best
+  // (AlignedLatticeTable); 0 keeps N. The search costs span + 1 times as much.
+  uint32_t lattice_size_span = 0;
   // aligned-lattice*, aligned-tent-lattice*: read the lattices a server has
   // chosen and cached (FetchAlignedSets with the construction) instead of
   // searching for them here; the server's window is the default one, so a

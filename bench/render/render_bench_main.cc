@@ -275,7 +275,8 @@ int Main(int argc, char** argv) {
       {"scenes", "antialias,shadow"}, {"samplers", ""}, {"threads", "2"}, {"seed", "1"},
       {"prepass", kDefaultPrepass}, {"alt-prepass", "samples256"},
       {"compare-prepass", "grid16,grid16c40,grid16c60,jgrid16,samples64,samples1024"},
-      {"line-rates", "1"}, {"two-max-n", "65536"}, {"lattice-window", "1"}, {"tent-window", "2"}};
+      {"line-rates", "1"}, {"two-max-n", "65536"}, {"lattice-window", "1"}, {"tent-window", "2"},
+      {"lattice-size-span", "0"}};
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
     if (k.rfind("--", 0) != 0 || i + 1 >= argc || !a.count(k.substr(2))) {
@@ -302,6 +303,14 @@ int Main(int argc, char** argv) {
   const std::optional<double> tent_window_flag = window("tent-window");
   if (!lattice_window_flag || !tent_window_flag) return 2;
   const double lattice_window = *lattice_window_flag, tent_window = *tent_window_flag;
+  // aligned-lattice*: each key's lattice may have N - span ... N points, the
+  // size that scores best (render/lattice_sets.h).
+  const long size_span = std::strtol(a["lattice-size-span"].c_str(), nullptr, 10);
+  if (size_span < 0 || size_span > 1024) {
+    std::fprintf(stderr, "render_bench: --lattice-size-span must be in [0, 1024], got %s\n",
+                 a["lattice-size-span"].c_str());
+    return 2;
+  }
   const std::string out = a["out"];
   // The whole path (a run under a new parent folder once lost its tables
   // silently); a folder that cannot be made stops the run here.
@@ -516,15 +525,19 @@ int Main(int argc, char** argv) {
       LatticeTableStats st;
       cli::Progress bar(folded ? "tent lattices" : "lattices");
       auto built = AlignedLatticeTable(n, maps, policy, folded ? tent_window : lattice_window, threads, &st,
-                                       [&](double done, double total) { bar.Update(done, total, ""); }, folded);
+                                       [&](double done, double total) { bar.Update(done, total, ""); }, folded,
+                                       folded ? 0 : static_cast<uint32_t>(size_span));
       bar.Finish("");
       if (!built.ok()) {
         std::fprintf(stderr, "render_bench: N=%u: %s\n", n, built.status().message().c_str());
         return 1;
       }
       (folded ? tents : lattices) = std::move(*built);
-      std::fprintf(stderr, "N=%u: %zu one-direction and %zu two-direction %slattices (%zu searches) in %.1f s\n",
-                   n, st.one, st.two, folded ? "tent-folded " : "", st.searched, st.seconds);
+      std::fprintf(stderr,
+                   "N=%u: %zu one-direction and %zu two-direction %slattices (%zu searches; %zu keys below N, "
+                   "%.1f points a key) in %.1f s\n",
+                   n, st.one, st.two, folded ? "tent-folded " : "", st.searched, st.smaller, st.mean_points,
+                   st.seconds);
     }
     ShiftTile tile;
     bool need_tile = false;

@@ -109,6 +109,11 @@ TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   ASSERT_EQ(r.exit_code, 0) << Said(r);
   EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);
   EXPECT_EQ(Said(r).find("pre-pass"), std::string::npos) << Said(r);
+  // Lattices of N - span ... N points: the budget reported is N, an upper bound.
+  r = RunCli("render --size 12 --sampler aligned-lattice-exact -n 64 --lattice-size-span 6 -o " + dir_ + "/ls.npy");
+  ASSERT_EQ(r.exit_code, 0) << Said(r);
+  EXPECT_NE(Said(r).find("samples per pixel: 64\n"), std::string::npos) << Said(r);
+  EXPECT_NE(Said(r).find("points a key on average"), std::string::npos) << Said(r);
 }
 
 TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
@@ -116,7 +121,9 @@ TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
        {std::string("render --sampler no-such -n 16 -o x.npy"), std::string("render --sampler owen-sobol -o x.npy"),
         std::string("render --reference --sampler owen-sobol -o x.npy"),
         std::string("render --sampler owen-sobol -n 16 -o x.txt"), std::string("render --scene teapot --reference -o x.npy"),
-        std::string("render --sampler jittered -n 15 -o x.npy")}) {
+        std::string("render --sampler jittered -n 15 -o x.npy"),
+        std::string("render --sampler owen-sobol -n 64 --lattice-size-span 4 -o x.npy"),
+        std::string("render --sampler aligned-lattice -n 20 --lattice-size-span 8 -o x.npy")}) {
     const CliRun r = RunCli(args + " --size 8");
     const std::string said = Said(r);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << said;

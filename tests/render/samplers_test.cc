@@ -12,6 +12,7 @@
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/spectral_estimator.h"
+#include "core/optimize/aligned_lattice.h"
 #include "core/sampling/samplers.h"
 #include "core/util/hash.h"
 
@@ -177,6 +178,70 @@ TEST(RenderSamplers, RefusesWhatItCannotDo) {
   seg.orientation = LineOrientation::kRandom;
   seg.segment_length = 0.0;
   EXPECT_FALSE(MakePixelSampler(seg).ok());
+}
+
+// With a size span each key gets the lattice size in [N - span, N] whose
+// chosen generator scores best for its directions (render/lattice_sets.h):
+// every served set is a rank-1 lattice of such a size, its score is the
+// least over the sizes, and the sampler over it stays unbiased.
+TEST(RenderSamplers, ALatticeTableWithASizeSpanGivesEachKeyItsBestScoringSize) {
+  constexpr uint32_t kN = 128, kSpan = 6;
+  std::vector<PixelDirection> dirs;
+  for (double theta : {10.0, 30.0, 63.0, 97.0, 151.0}) {
+    PixelDirection d;
+    d.kind = PixelDirection::Kind::kOne;
+    d.theta1 = theta;
+    dirs.push_back(d);
+  }
+  PixelDirection pair;
+  pair.kind = PixelDirection::Kind::kTwo;
+  pair.theta1 = 20.0;
+  pair.theta2 = 75.0;
+  dirs.push_back(pair);
+  LatticeTableStats st;
+  auto table = AlignedLatticeTable(kN, {&dirs}, AlignedPolicy{}, 1.0, 1, &st, {}, false, kSpan);
+  ASSERT_TRUE(table.ok()) << table.status().message();
+  EXPECT_EQ(st.searched % (kSpan + 1), 0u);
+  auto check = [&](const PointSet* set, const std::vector<double>& served) {
+    ASSERT_NE(set, nullptr);
+    const uint32_t size = static_cast<uint32_t>(set->size());
+    ASSERT_GE(size, kN - kSpan);
+    ASSERT_LE(size, kN);
+    const std::optional<uint32_t> g = LatticeGeneratorOf(*set, 0, false);
+    ASSERT_TRUE(g.has_value()) << "not a rank-1 lattice of " << size << " points";
+    auto score = AlignedLatticeScore(size, *g, served);
+    ASSERT_TRUE(score.ok());
+    for (uint32_t other = kN - kSpan; other <= kN; ++other) {
+      auto best = ChooseAlignedLatticeGenerator(other, served);
+      ASSERT_TRUE(best.ok());
+      EXPECT_LE(*score, best->score + 1e-9 * std::fabs(best->score))
+          << "served " << served[0] << " with " << size << " points; " << other << " scores better";
+    }
+  };
+  for (int a : {10, 30, 63, 97, 151}) check(table->One(a), {static_cast<double>(a)});
+  check(table->Two(20, 75), {20.0, 75.0});
+  EXPECT_GT(st.smaller, 0u);  // at these keys some size below N wins
+  // The sampler reads sets of any size: unbiased on a pixel's edge.
+  const Fixture& f = Get("shadow");
+  auto spanned = AlignedLatticeTable(kN, {&f.exact}, AlignedPolicy{}, 1.0, 1, nullptr, {}, false, kSpan);
+  ASSERT_TRUE(spanned.ok());
+  SamplerConfig c{"aligned-lattice-exact", kN};
+  c.exact = &f.exact;
+  c.sets = &*spanned;
+  auto sampler = MakePixelSampler(c);
+  ASSERT_TRUE(sampler.ok()) << sampler.status().message();
+  int edges = 0;
+  for (size_t i : f.pixels) {
+    const PixelIntegrand& px = f.scene.Pixel(i);
+    if (px.Classify() != PixelClass::kEdge || edges >= 6) continue;
+    ++edges;
+    const Stats s = Replicates(f.scene, **sampler, i, 24);
+    EXPECT_NEAR(s.mean, px.Exact(), 5.0 * s.sd / std::sqrt(24.0) + 1e-12) << "pixel " << i;
+  }
+  EXPECT_GT(edges, 0);
+  // A span that leaves fewer than 16 points is refused.
+  EXPECT_FALSE(AlignedLatticeTable(32, {&dirs}, AlignedPolicy{}, 1.0, 1, nullptr, {}, false, 17).ok());
+  EXPECT_TRUE(AlignedLatticeTable(32, {&dirs}, AlignedPolicy{}, 1.0, 1, nullptr, {}, false, 16).ok());
 }
 
 // The plain lattices and the tent-folded ones (whose pixels shift before
