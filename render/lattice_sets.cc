@@ -86,7 +86,7 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   for (uint32_t size = n; size + size_span >= n; --size) {
     const double pass = n - size, passes = size_span + 1.0;
     auto choices = ChooseAlignedLatticeGenerators(size, keys, o, [&](double done, double total) {
-      if (progress) progress((pass + done / total) / passes, 1.0);
+      if (progress && total > 0.0) progress((pass + done / total) / passes, 1.0);
     });
     if (!choices.ok()) return choices.status();
     size_t k = 0;

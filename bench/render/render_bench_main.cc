@@ -305,8 +305,9 @@ int Main(int argc, char** argv) {
   const double lattice_window = *lattice_window_flag, tent_window = *tent_window_flag;
   // aligned-lattice*: each key's lattice may have N - span ... N points, the
   // size that scores best (render/lattice_sets.h).
-  const long size_span = std::strtol(a["lattice-size-span"].c_str(), nullptr, 10);
-  if (size_span < 0 || size_span > 1024) {
+  char* span_end = nullptr;
+  const long size_span = std::strtol(a["lattice-size-span"].c_str(), &span_end, 10);
+  if (span_end == a["lattice-size-span"].c_str() || *span_end != '\0' || size_span < 0 || size_span > 1024) {
     std::fprintf(stderr, "render_bench: --lattice-size-span must be in [0, 1024], got %s\n",
                  a["lattice-size-span"].c_str());
     return 2;

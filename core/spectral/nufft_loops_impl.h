@@ -1,7 +1,8 @@
 // The NUFFT inner loops, included once per instruction set by
 // core/nufft_loops_<isa>.cc with ALIGNSET_NUFFT_ISA naming the variant.
 // Everything here has internal linkage (anonymous namespace) and calls no
-// inline function of another header, so no code compiled for one ISA can be
+// inline function of another header (the AVX2 intrinsics are always inlined
+// and never emitted on their own), so no code compiled for one ISA can be
 // merged into the other by the linker.
 #ifndef ALIGNSET_NUFFT_ISA
 #error "define ALIGNSET_NUFFT_ISA before including core/nufft_loops_impl.h"
@@ -96,8 +97,8 @@ void SpreadW(double* grid, size_t stride, const double* k1, const double* k2, co
 
 template <int W>
 void InterpolatePortableW(const std::complex<double>* grid, size_t stride, const double* k1,
-                  const double* k2, const int* row, const int* col, size_t count,
-                  std::complex<double>* out) {
+                          const double* k2, const int* row, const int* col, size_t count,
+                          std::complex<double>* out) {
   const double* g0 = reinterpret_cast<const double*>(grid);
   double* o = reinterpret_cast<double*>(out);
   for (size_t i = 0; i < count; ++i) {
@@ -138,8 +139,8 @@ void InterpolatePortableW(const std::complex<double>* grid, size_t stride, const
 // portable loop (InterpolateW below).
 template <int W, bool kFusedRows>
 void InterpolateAvx2W(const std::complex<double>* grid, size_t stride, const double* k1,
-                  const double* k2, const int* row, const int* col, size_t count,
-                  std::complex<double>* out) {
+                      const double* k2, const int* row, const int* col, size_t count,
+                      std::complex<double>* out) {
   constexpr int kFull = (2 * W) / 4;        // (re, im) pairs 0 .. 2 kFull - 1, two a register
   constexpr bool kTail = (2 * W) % 4 != 0;  // the last pair of an odd width
   const double* g0 = reinterpret_cast<const double*>(grid);
