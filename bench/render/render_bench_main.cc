@@ -40,6 +40,7 @@
 #include <sstream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/direction.h"
@@ -86,6 +87,14 @@ struct Variant {
   bool continued = true;  // with reuse: direction-less pixels continue the pre-pass's sequence
 };
 
+// A variant with the default options.
+Variant Named(std::string label, std::string sampler) {
+  Variant v;
+  v.label = std::move(label);
+  v.sampler = std::move(sampler);
+  return v;
+}
+
 bool IsLattice(const Variant& v) { return v.sampler.rfind("aligned-lattice", 0) == 0; }
 bool IsTentLattice(const Variant& v) { return v.sampler.rfind("aligned-tent-lattice", 0) == 0; }
 
@@ -94,34 +103,34 @@ std::vector<Variant> AllVariants() {
   for (const char* s : {"random", "owen-sobol", "pmj02bn", "pmj02bn-sheared", "rank1-lattice",
                         "screen-space-rank1", "aligned", "aligned-exact", "aligned-lattice",
                         "aligned-lattice-exact", "aligned-tent-lattice", "aligned-tent-lattice-exact"}) {
-    v.push_back({s, s});
+    v.push_back(Named(s, s));
   }
   // Every sample counted and used: the estimated samplers with their
   // (randomized) pre-pass folded in; labels end in "+reuse" (the renderer's
   // default) or "+unbiased" (count weights on direction-less pixels too).
   for (const char* s : {"aligned", "aligned-lattice", "aligned-tent-lattice", "pmj02bn-sheared"}) {
-    Variant r{std::string(s) + "+reuse", s};
+    Variant r = Named(std::string(s) + "+reuse", s);
     r.reuse = true;
     v.push_back(r);
   }
-  Variant unbiased{"aligned-lattice+unbiased", "aligned-lattice"};
+  Variant unbiased = Named("aligned-lattice+unbiased", "aligned-lattice");
   unbiased.reuse = true;
   unbiased.continued = false;
   v.push_back(unbiased);
-  Variant axis{"aligned-none-axis", "aligned"};
+  Variant axis = Named("aligned-none-axis", "aligned");
   axis.policy.none = AlignedPolicy::None::kAxisSet;
   v.push_back(axis);
-  Variant one_dir{"aligned-exact-1dir", "aligned-exact"};
+  Variant one_dir = Named("aligned-exact-1dir", "aligned-exact");
   one_dir.policy.two_directions = false;
   v.push_back(one_dir);
-  Variant same_shift{"aligned-exact-noshift", "aligned-exact"};
+  Variant same_shift = Named("aligned-exact-noshift", "aligned-exact");
   same_shift.per_pixel_shift = false;
   v.push_back(same_shift);
   for (const char* kind : {"line", "segment"}) {
     for (auto [o, name] : {std::pair{LineOrientation::kNormal, "normal"},
                            std::pair{LineOrientation::kEdge, "edge"},
                            std::pair{LineOrientation::kRandom, "random"}}) {
-      Variant l{std::string(kind) + "-" + name, kind};
+      Variant l = Named(std::string(kind) + "-" + name, kind);
       l.orientation = o;
       v.push_back(l);
     }
@@ -370,7 +379,7 @@ int Main(int argc, char** argv) {
   for (const std::string& spec : Split(a["alt-prepass"])) {
     const std::string name = ParsePrepass(spec)->Name();
     if (name == prepasses.front().Name()) continue;
-    Variant alt{"aligned-" + name, "aligned"};
+    Variant alt = Named("aligned-" + name, "aligned");
     alt.prepass = name;
     if (wanted.empty() || std::find(wanted.begin(), wanted.end(), alt.label) != wanted.end()) {
       variants.push_back(alt);
