@@ -11,6 +11,14 @@
 
 namespace alignset::render {
 
+Status CheckLatticeSizeSpan(uint32_t n, uint32_t size_span) {
+  if (size_span > 0 && (n < 16 || size_span > n - 16)) {
+    return Status::InvalidArgument("a lattice size span of " + std::to_string(size_span) + " leaves N = " +
+                                   std::to_string(n) + " below 16 points");
+  }
+  return Status::Ok();
+}
+
 StatusOr<AlignedSetTable> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats,
@@ -24,10 +32,7 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   if (!(window_deg >= 0.0 && window_deg <= 10.0)) {
     return Status::InvalidArgument("the lattice window must be in [0, 10] degrees");
   }
-  if (size_span > n - 16) {
-    return Status::InvalidArgument("a lattice size span of " + std::to_string(size_span) + " leaves N = " +
-                                   std::to_string(n) + " below 16 points");
-  }
+  if (Status s = CheckLatticeSizeSpan(n, size_span); !s.ok()) return s;
   // Every served degree and pair is the image of a canonical key under a
   // symmetry of the square (core/align/canonical.h), and the lattice chosen
   // for the key maps onto one the search would score as well for the

@@ -43,6 +43,11 @@ struct LatticeTableStats {
 // go to the larger). A pixel then spends at most N samples. The search
 // costs size_span + 1 times as much. INVALID_ARGUMENT for a span that
 // leaves N' below 16.
+// OK for a size span AlignedLatticeTable takes at N (0 always; else
+// N - size_span at least 16), INVALID_ARGUMENT otherwise: a caller can refuse
+// a bad span before any work.
+Status CheckLatticeSizeSpan(uint32_t n, uint32_t size_span);
+
 StatusOr<AlignedSetTable> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats = nullptr,

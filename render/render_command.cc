@@ -62,10 +62,8 @@ StatusOr<RenderSummary> RunRender(
                                      "lattices, not '" + r.sampler + "'" +
                                      (r.lattices_from_server ? " from a server" : ""));
     }
-    if (r.spp < 16 || r.lattice_size_span > r.spp - 16) {
-      return Status::InvalidArgument("--lattice-size-span " + std::to_string(r.lattice_size_span) +
-                                     " leaves fewer than 16 points of --spp " + std::to_string(r.spp));
-    }
+    // Refused here, before the pre-pass, rather than when the table is built.
+    if (Status s = CheckLatticeSizeSpan(r.spp, r.lattice_size_span); !s.ok()) return s;
   }
   const std::vector<PixelDirection> exact = GeometryDirections(*scene);
   auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp) : r.prepass);

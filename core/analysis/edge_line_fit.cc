@@ -219,6 +219,13 @@ Line FitParallel(const Stack& s, const std::vector<size_t>& idx) {
   return l;
 }
 
+// The crossings of `among`, patch by patch.
+std::vector<std::vector<size_t>> ByPatch(const Stack& s, const std::vector<size_t>& among) {
+  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
+  for (size_t i : among) by_patch[s.of[i]].push_back(i);
+  return by_patch;
+}
+
 // The stacked counterpart of BestLine: candidate directions through two
 // crossings of one patch, each scored by the inliers of its parallel lines
 // over all patches; a direction must rest on at least two of the centre
@@ -226,8 +233,7 @@ Line FitParallel(const Stack& s, const std::vector<size_t>& idx) {
 Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double band,
                         const EdgeLineOptions& o, uint64_t seed) {
   Found best;
-  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
-  for (size_t i : among) by_patch[s.of[i]].push_back(i);
+  const std::vector<std::vector<size_t>> by_patch = ByPatch(s, among);
   if (by_patch[s.centre].size() < 2) return best;
   // Candidates are scored by their counts; only a new best builds its
   // inlier list.
@@ -513,10 +519,8 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Pat
       k, o, seed,
       [&](const std::vector<size_t>& among, uint64_t sd) { return BestParallelLines(s, among, band, o, sd); },
       [&](const Found& f, const std::vector<size_t>& among) {
-        std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
-        for (size_t i : among) by_patch[s.of[i]].push_back(i);
         ParallelBands bands;
-        FindParallelBands(s, by_patch, f.line.nx, f.line.ny, band, &bands);
+        FindParallelBands(s, ByPatch(s, among), f.line.nx, f.line.ny, band, &bands);
         return BandInliers(bands);
       },
       &out);
