@@ -132,15 +132,16 @@ void AddRenderCommand(CLI::App& app) {
       ->check(FiniteIn(1e-6, 1.0));
   c->add_option("--prepass", o->request.prepass,
                  "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
-                 "auto (nedgesM, M a quarter of N from 16 to 256, stacked 5 x 5 up to N = 1024), gridG, jgridG,\n"
+                 "auto (nedgesM, M a quarter of N from 16 to 256, stacked 5 x 5 and on a lattice up to N = 1024), gridG, jgridG,\n"
                  "samplesM, edgesM or nedgesM (edgesM pooled with the neighbouring pixels' samples; sR after it:\n"
                  "on a shared domain, the (2R + 1)^2 pixels around, R from 1 to 4, default 1),\n"
-                 "optionally cP (a confidence floor of P percent)")
+                 "optionally cP (a confidence floor of P percent); a final l on samplesM, edgesM, nedgesM\n"
+                 "takes the M samples on a shifted rank-1 lattice instead of Owen-Sobol points")
       ->capture_default_str();
   c->add_option("--reuse-prepass", o->reuse,
                  "fold the pre-pass's samples into each pixel's estimate: auto (when the pre-pass\n"
                  "allows it: samplesM, edgesM; a pixel without a direction continues the pre-pass's\n"
-                 "Owen-Sobol sequence), on (refuse a pre-pass that does not), unbiased (as on, but\n"
+                 "Owen-Sobol sequence, or leaves a lattice pre-pass out), on (refuse a pre-pass that does not), unbiased (as on, but\n"
                  "count weights on every pixel: no selection bias, noisier smooth pixels), off")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "on", "unbiased", "off"}));

@@ -27,9 +27,23 @@ struct PixelDirection {
   uint32_t prepass_samples = 0;
   // The scramble of those samples: they are the first prepass_samples points
   // of OwenScrambledSobol(·, prepass_seed), so a sampler can continue the
-  // sequence (render/prepass_reuse.h).
+  // sequence (render/prepass_reuse.h), or, with prepass_lattice, the shift of
+  // PrepassLatticePoints(prepass_samples, prepass_seed).
   uint64_t prepass_seed = 0;
+  // Whether those samples are the pre-pass lattice of render/prepass_lattice.h
+  // rather than Owen-Sobol points.
+  bool prepass_lattice = false;
 };
+
+// d's direction with `from`'s pre-pass (mean, count, seed and kind): what a
+// later stage that replaces a pixel's direction keeps.
+inline PixelDirection WithPrepassOf(PixelDirection d, const PixelDirection& from) {
+  d.prepass_mean = from.prepass_mean;
+  d.prepass_samples = from.prepass_samples;
+  d.prepass_seed = from.prepass_seed;
+  d.prepass_lattice = from.prepass_lattice;
+  return d;
+}
 
 // The bound: the direction from the scene's geometry. The pixel's
 // discontinuities (PixelIntegrand::Discontinuities) are grouped by normal

@@ -51,6 +51,9 @@ class Reused : public PixelSampler {
       : inner_(std::move(inner)), dirs_(dirs), n_(n), continue_(continue_sequence) {}
   double Estimate(const PixelIntegrand& f, const PixelTask& t) const override {
     const PixelDirection& d = (*dirs_)[t.index];
+    if (continue_ && d.kind == PixelDirection::Kind::kNone && d.prepass_lattice) {
+      return inner_->Estimate(f, t);
+    }
     if (continue_ && d.kind == PixelDirection::Kind::kNone && d.prepass_samples > 0) {
       return ContinuedPrepass(f, d, n_);
     }

@@ -75,7 +75,9 @@ double ContinuedPrepass(const PixelIntegrand& f, const PixelDirection& d, uint32
 // Wraps a sampler of N points that reads `dirs` (the pre-pass's map) so that
 // each pixel's estimate includes its pre-pass; with `continue_sequence`
 // (the sampler's own direction-less branch is Owen-Sobol) a direction-less
-// pixel takes ContinuedPrepass instead.
+// pixel takes ContinuedPrepass instead, or, after a lattice pre-pass
+// (render/prepass_lattice.h), which has no sequence to continue, the
+// sampler's own Owen-Sobol estimate alone.
 std::unique_ptr<PixelSampler> ReusePrepass(std::unique_ptr<PixelSampler> inner,
                                            const std::vector<PixelDirection>* dirs, uint32_t n,
                                            bool continue_sequence);

@@ -10,6 +10,7 @@
 #include "core/sampling/owen_sobol.h"
 #include "core/util/hash.h"
 #include "core/util/directions.h"
+#include "render/prepass_lattice.h"
 #include "render/parallel.h"
 
 namespace alignset::render {
@@ -20,6 +21,7 @@ std::string Prepass::Name() const {
     floor.append("s").append(std::to_string(stack_radius));
   }
   if (min_confidence_pct > 0) floor.append("c").append(std::to_string(min_confidence_pct));
+  if (lattice) floor.append("l");
   switch (kind) {
     case Kind::kGrid: return "grid" + std::to_string(count) + floor;
     case Kind::kJitteredGrid: return "jgrid" + std::to_string(count) + floor;
@@ -36,7 +38,8 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
                                    "edgesM or nedgesM (M in [16, 4096]; nedgesM optionally followed by sR, "
                                    "a stack of (2R + 1)^2 pixels on a shared domain, R in [1, " +
                                    std::to_string(kMaxStackRadius) + "]), optionally followed by cP (a "
-                                   "confidence floor of P percent), got '" + spec + "'");
+                                   "confidence floor of P percent), the scattered ones optionally ending in l "
+                                   "(a lattice pre-pass), got '" + spec + "'");
   };
   // 1 to 5 digits, or -1.
   auto digits = [](const std::string& s) -> int {
@@ -49,25 +52,30 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   Prepass p;
   std::string rest;
   int lo = 8, hi = 64;
-  if (spec.rfind("jgrid", 0) == 0) {
+  std::string body = spec;
+  if (!body.empty() && body.back() == 'l') {
+    p.lattice = true;
+    body.pop_back();
+  }
+  if (body.rfind("jgrid", 0) == 0) {
     p.kind = Prepass::Kind::kJitteredGrid;
-    rest = spec.substr(5);
-  } else if (spec.rfind("grid", 0) == 0) {
+    rest = body.substr(5);
+  } else if (body.rfind("grid", 0) == 0) {
     p.kind = Prepass::Kind::kGrid;
-    rest = spec.substr(4);
-  } else if (spec.rfind("nedges", 0) == 0) {
+    rest = body.substr(4);
+  } else if (body.rfind("nedges", 0) == 0) {
     p.kind = Prepass::Kind::kPooledEdgeLines;
-    rest = spec.substr(6);
+    rest = body.substr(6);
     lo = 16;
     hi = 4096;
-  } else if (spec.rfind("edges", 0) == 0) {
+  } else if (body.rfind("edges", 0) == 0) {
     p.kind = Prepass::Kind::kEdgeLines;
-    rest = spec.substr(5);
+    rest = body.substr(5);
     lo = 16;
     hi = 4096;
-  } else if (spec.rfind("samples", 0) == 0) {
+  } else if (body.rfind("samples", 0) == 0) {
     p.kind = Prepass::Kind::kSamples;
-    rest = spec.substr(7);
+    rest = body.substr(7);
     lo = 16;
     hi = 4096;
   } else {
@@ -86,11 +94,12 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
     if (p.min_confidence_pct < 0 || p.min_confidence_pct > 100) return refuse();
   }
   if (p.count < lo || p.count > hi) return refuse();
+  if (p.lattice && !p.Scattered()) return refuse();
   return p;
 }
 
 std::string AutoPrepass(uint32_t n) {
-  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256)) + (n <= 1024 ? "s2" : "");
+  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256)) + (n <= 1024 ? "s2l" : "");
 }
 
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {
@@ -254,10 +263,7 @@ class SpectralEstimator : public DirectionEstimator {
             AxialDistanceDeg(d.theta1, out[i].theta1) > kAgreeDeg) {
           return;
         }
-        d.prepass_mean = out[i].prepass_mean;
-        d.prepass_samples = out[i].prepass_samples;
-        d.prepass_seed = out[i].prepass_seed;
-        out[i] = d;
+        out[i] = WithPrepassOf(d, out[i]);
       });
       for (size_t k = 0; k + 1 < static_cast<size_t>(side); ++k) {
         rows[k] = std::move(rows[k + 1]);
@@ -277,10 +283,12 @@ class SpectralEstimator : public DirectionEstimator {
     return s / static_cast<double>(v.size());
   }
 
-  // The scattered pre-passes: M Owen-Sobol points of the pixel and f there.
+  // The scattered pre-passes: M Owen-Sobol points of the pixel (the pre-pass
+  // lattice with the suffix l) and f there.
   SampledPatch Sample(const PixelIntegrand& f, uint64_t pixel_seed) const {
     SampledPatch s;
-    s.points = OwenScrambledSobol(static_cast<uint32_t>(p_.count), pixel_seed);
+    s.points = p_.lattice ? PrepassLatticePoints(static_cast<uint32_t>(p_.count), pixel_seed)
+                          : OwenScrambledSobol(static_cast<uint32_t>(p_.count), pixel_seed);
     s.values.reserve(s.points.size());
     for (const Point2& q : s.points) s.values.push_back(f.Eval({q.x, q.y}));
     return s;
@@ -321,6 +329,7 @@ class SpectralEstimator : public DirectionEstimator {
       d.prepass_mean = mean;
       d.prepass_samples = static_cast<uint32_t>(p_.Evaluations());
       d.prepass_seed = pixel_seed;
+      d.prepass_lattice = p_.lattice;
     }
     return d;
   }
@@ -336,11 +345,7 @@ class SpectralEstimator : public DirectionEstimator {
 
 PixelDirection ApplyConfidenceFloor(const PixelDirection& d, int min_confidence_pct) {
   if (d.kind == PixelDirection::Kind::kNone || d.confidence * 100.0 >= min_confidence_pct) return d;
-  PixelDirection none;
-  none.prepass_mean = d.prepass_mean;
-  none.prepass_samples = d.prepass_samples;
-  none.prepass_seed = d.prepass_seed;
-  return none;
+  return WithPrepassOf(PixelDirection{}, d);
 }
 
 std::unique_ptr<DirectionEstimator> MakeSpectralEstimator(const Prepass& prepass) {

@@ -69,7 +69,7 @@ inline constexpr int kMaxStackRadius = 4;
 //
 // Only samplesM and edgesM are reusable in the pixel's estimate
 // (render/prepass_reuse.h): their mean is an Owen-Sobol estimate of the
-// pixel. gridG's is biased (the
+// pixel (with the suffix l, a shifted lattice's, as unbiased). gridG's is biased (the
 // cell centres); jgridG's is unbiased but, measured on the scenes' pixels
 // at 256 samples (tests/render/prepass_reuse_test.cc), 2-2.5 times
 // Owen-Sobol's squared error on edges and 10^3 times on smooth pixels, and a
@@ -82,6 +82,10 @@ struct Prepass {
   int count = 16;            // the grid side G, or the sample count M
   int min_confidence_pct = 0;
   int stack_radius = kDefaultStackRadius;  // nedgesM on a shared domain
+  // A suffix "l" on a scattered pre-pass: its M points are the pre-pass
+  // lattice of render/prepass_lattice.h instead of Owen-Sobol points, and
+  // an aligned-lattice sampler reusing it lifts it into its own lattice.
+  bool lattice = false;
   std::string Name() const;
   bool Scattered() const {
     return kind == Kind::kSamples || kind == Kind::kEdgeLines || kind == Kind::kPooledEdgeLines;
@@ -95,7 +99,7 @@ struct Prepass {
 // INVALID_ARGUMENT for anything but gridG / jgridG (8 <= G <= 64) or
 // samplesM / edgesM / nedgesM (16 <= M <= 4096), nedgesM with an optional
 // sR (1 <= R <= kMaxStackRadius), each with an optional cP (0 <= P <= 100)
-// after it.
+// after it, and the scattered ones with an optional l at the very end.
 StatusOr<Prepass> ParsePrepass(const std::string& spec);
 
 // The default pre-pass of the estimated samplers in the benchmarks: 256
@@ -108,7 +112,10 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec);
 // from 2.50 and 3.15x below Owen-Sobol at the same total to 3.19 and 4.03x
 // (docs/rendering.md, "Every sample counted"). Its
 // samples are reusable. (Its confidence is the inliers' share, at least
-// one half, so a c50 floor is a no-op.)
+// one half, so a c50 floor is a no-op.) The lattice pre-pass (nedges256l,
+// render/prepass_lattice.h) is not the default here: with 256 samples
+// before N = 256 a smooth pixel keeps only the sampler's own 256 points,
+// 0.12x Owen-Sobol at 512 where the continued sequence is Owen-Sobol at 512.
 inline constexpr const char* kDefaultPrepass = "nedges256";
 // `alignset render`'s default, "auto": the pooled edge-line fit on a
 // quarter of the sampler's N, at least 16 and at most 256 samples (nedges64
@@ -124,6 +131,14 @@ inline constexpr const char* kDefaultPrepass = "nedges256";
 // below Owen-Sobol at 320, and a sweep with the stacked shadow fit over
 // scene seeds 1-6 kept 64 (nedges32 at 288: 2.07 and 2.08x; nedges128 at
 // 384: 2.15 and 1.84x; docs/rendering.md, "Every sample counted").
+// Up to N = 1024 the samples are the lattice pre-pass (suffix l,
+// render/prepass_lattice.h, since 2026-11-28): aligned lattices' edge MSE
+// 0.97-0.98x of the Owen-Sobol pre-pass's at 256 + 64 (scene seeds 1-18,
+// both scenes; the worst seeds against the best other sampler higher too)
+// and 0.95-0.99x at 1024 + 256; at 4096 + 256 the mean moved by 0-4% but
+// single seeds by up to 26% either way, one antialias scene from a win to
+// a loss and one shadow scene the other way, so above 1024 the pre-pass
+// stays Owen-Sobol (docs/rendering.md, "A lattice pre-pass").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n);
 // Whether and how a pre-pass is folded into the pixel's estimate

@@ -3,18 +3,22 @@
 // every replicate (its direction, hence the set chosen, and its mean change
 // together); continuing the pre-pass's sequence on direction-less pixels
 // makes them Owen-Sobol at N + P, at a selection bias measured small on the
-// pixels whose branch changes between draws.
+// pixels whose branch changes between draws. The lattice pre-pass
+// (render/prepass_lattice.h) is held to the same.
 #include "render/prepass_reuse.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/lattice_sets.h"
+#include "render/prepass_lattice.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 #include "render/spectral_estimator.h"
 #include "core/sampling/owen_sobol.h"
+#include "core/sampling/rank1_lattice.h"
 #include "core/util/hash.h"
 
 namespace alignset::render {
@@ -53,6 +57,81 @@ TEST(PrepassReuse, TheOwenSobolPrepassHandsOnItsMeanAndTheGridsDoNot) {
   }
 }
 
+TEST(PrepassLattice, ThePrepassIsAShiftedRankOneLatticeWhoseMeanIsHandedOn) {
+  for (uint32_t m : {16u, 64u, 256u}) {
+    const uint32_t g = Rank1Generator(m);
+    for (uint64_t seed : {1ull, 77ull}) {
+      const PointSet p = PrepassLatticePoints(m, seed);
+      ASSERT_EQ(p.size(), m);
+      // Point j is point 0 moved by j (1, g) / m on the torus.
+      for (uint32_t j = 0; j < m; ++j) {
+        auto torus = [](double d) { return d - std::floor(d + 0.5); };
+        EXPECT_NEAR(torus(p[j].x - p[0].x - double(j) / m), 0.0, 1e-12) << m << " " << j;
+        EXPECT_NEAR(torus(p[j].y - p[0].y - double(uint64_t(j) * g % m) / m), 0.0, 1e-12) << m << " " << j;
+        EXPECT_TRUE(p[j].x >= 0.0 && p[j].x < 1.0 && p[j].y >= 0.0 && p[j].y < 1.0);
+      }
+      // One point in each of the m columns and rows (g is coprime to m).
+      for (bool x : {true, false}) {
+        std::vector<int> hits(m, 0);
+        for (const Point2& q : p) ++hits[static_cast<size_t>((x ? q.x : q.y) * m)];
+        EXPECT_EQ(*std::min_element(hits.begin(), hits.end()), 1) << m;
+      }
+    }
+    EXPECT_NE(PrepassLatticePoints(m, 1)[0], PrepassLatticePoints(m, 2)[0]);  // a shift per pixel
+  }
+  // The estimator samples those points and hands on their mean, marked.
+  const Scene scene = *MakeScene("shadow", 32, 32, 2);
+  const PixelIntegrand& f = scene.Pixel(scene.size() / 2 + 7);
+  for (const char* spec : {"edges64l", "samples64l", "nedges64s2l"}) {
+    const PixelDirection d = MakeSpectralEstimator(*ParsePrepass(spec))->Estimate(f, 99);
+    EXPECT_TRUE(d.prepass_lattice) << spec;
+    EXPECT_EQ(d.prepass_samples, 64u) << spec;
+    double mean = 0.0;
+    for (const Point2& q : PrepassLatticePoints(64, 99)) mean += f.Eval({q.x, q.y}) / 64.0;
+    EXPECT_DOUBLE_EQ(d.prepass_mean, mean) << spec;
+  }
+  EXPECT_FALSE(MakeSpectralEstimator(*ParsePrepass("edges64"))->Estimate(f, 99).prepass_lattice);
+}
+
+TEST(PrepassLattice, ADirectionLessPixelLeavesTheLatticePrepassOut) {
+  // A lattice is no net, so there is no sequence to continue: the pixel's
+  // estimate is the sampler's own Owen-Sobol one, exactly; with the count
+  // weights on every pixel (--reuse-prepass unbiased) the pre-pass is
+  // weighted in as an Owen-Sobol one would be.
+  constexpr uint32_t kN = 256;
+  const Scene scene = *MakeScene("shadow", 64, 64, 2);
+  const std::vector<PixelClass> classes = scene.Classes();
+  const auto estimator = MakeSpectralEstimator(*ParsePrepass("edges64l"));
+  std::vector<PixelDirection> dirs(scene.size());
+  AlignedSetTable empty;
+  empty.n = kN;
+  auto make = [&](bool reuse, bool continued) -> std::unique_ptr<PixelSampler> {
+    SamplerConfig c{"aligned-lattice", kN};
+    c.estimated = &dirs;
+    c.sets = &empty;
+    c.reuse_prepass = reuse;
+    c.continue_prepass = continued;
+    auto s = MakePixelSampler(c);
+    EXPECT_TRUE(s.ok()) << s.status().message();
+    return s.ok() ? std::move(*s) : nullptr;
+  };
+  const auto alone = make(false, true), continued = make(true, true), weighted = make(true, false);
+  ASSERT_TRUE(alone && continued && weighted);
+  int checked = 0;
+  for (size_t i = 0; i < classes.size() && checked < 4; i += 41) {
+    if (classes[i] != PixelClass::kSmooth) continue;
+    dirs[i] = estimator->Estimate(scene.Pixel(i), HashCombine(5, i));
+    ASSERT_EQ(dirs[i].kind, PixelDirection::Kind::kNone) << "smooth pixel " << i;
+    ASSERT_TRUE(dirs[i].prepass_lattice);
+    const int x = int(i % scene.width()), y = int(i / scene.width());
+    const double own = RenderPixel(scene, *alone, x, y, 3);
+    EXPECT_EQ(RenderPixel(scene, *continued, x, y, 3), own) << "pixel " << i;
+    EXPECT_NEAR(RenderPixel(scene, *weighted, x, y, 3), WithPrepass(dirs[i], own, kN), 1e-15) << "pixel " << i;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);
+}
+
 // Edge pixels (one and two directions) and smooth ones of a scene.
 std::vector<size_t> SomePixels(const Scene& scene, const std::vector<PixelDirection>& exact) {
   const std::vector<PixelClass> classes = scene.Classes();
@@ -71,7 +150,7 @@ std::vector<size_t> SomePixels(const Scene& scene, const std::vector<PixelDirect
 TEST(PrepassReuse, TheReusedEstimateIsUnbiasedOverRedrawnPrepasses) {
   constexpr int kReps = 96;
   constexpr uint32_t kN = 256;
-  for (const char* spec : {"edges256c50", "samples256c50"})
+  for (const char* spec : {"edges256c50", "samples256c50", "edges256c50l"})
   for (const char* name : {"antialias", "shadow"}) {
     const auto estimator = MakeSpectralEstimator(*ParsePrepass(spec));
     const Scene scene = *MakeScene(name, 96, 96, 3);
@@ -211,7 +290,7 @@ TEST(PrepassReuse, TheContinuationsSelectionBiasIsSmallOnBorderlinePixels) {
   // stay within a fifth of the estimate's own RMS error (a squared bias
   // under 4% of its MSE), on the borderline pixels of both scenes.
   constexpr int kReps = 1500;
-  for (auto [spec, n] : {std::pair{"edges64", 256u}, std::pair{"edges256", 1024u}})
+  for (auto [spec, n] : {std::pair{"edges64", 256u}, std::pair{"edges256", 1024u}, std::pair{"edges64l", 256u}})
   for (const char* name : {"antialias", "shadow"}) {
     const auto estimator = MakeSpectralEstimator(*ParsePrepass(spec));
     const Scene scene = *MakeScene(name, 96, 96, 3);

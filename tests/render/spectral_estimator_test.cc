@@ -19,7 +19,8 @@ namespace {
 TEST(SpectralEstimator, ParsesThePrepassAndRefusesWhatItCannotTake) {
   for (const char* good : {"grid16", "jgrid8", "grid64", "samples16", "samples256", "samples4096",
                            "grid16c50", "samples256c100", "jgrid16c5", "edges64", "nedges64",
-                           "nedges4096c50", "nedges64s2", "nedges64s4c20"}) {
+                           "nedges4096c50", "nedges64s2", "nedges64s4c20", "nedges64s2l", "edges64l",
+                           "samples256c50l", "nedges64s3c20l"}) {
     auto p = ParsePrepass(good);
     ASSERT_TRUE(p.ok()) << good << ": " << p.status().message();
     EXPECT_EQ(p->Name(), good);
@@ -35,11 +36,17 @@ TEST(SpectralEstimator, ParsesThePrepassAndRefusesWhatItCannotTake) {
   EXPECT_EQ(ParsePrepass("nedges64s3c20")->stack_radius, 3);
   EXPECT_EQ(ParsePrepass("nedges64s3c20")->min_confidence_pct, 20);
   EXPECT_EQ(ParsePrepass("nedges64s" + std::to_string(kDefaultStackRadius))->Name(), "nedges64");
+  EXPECT_FALSE(ParsePrepass("nedges64s2")->lattice);
+  EXPECT_TRUE(ParsePrepass("nedges64s2l")->lattice);
+  EXPECT_TRUE(ParsePrepass("nedges64s2l")->Reusable());
+  EXPECT_EQ(ParsePrepass("nedges64s3c20l")->stack_radius, 3);
+  EXPECT_EQ(ParsePrepass("nedges64s3c20l")->min_confidence_pct, 20);
   for (const char* bad : {"", "grid", "grid4", "grid65", "jgrid", "samples8", "samples5000",
                           "grid16x", "grid-16", "placeholder8", "samples 64", "grid16c", "grid16c101",
                           "grid16c-1", "c50", "grid16c50c5", "nedges8", "nedges", "nedge64", "xnedges64",
                           "nedges64s0", "nedges64s5", "nedges64s", "edges64s2", "samples64s1", "nedges64c20s2",
-                          "nedgess2", "nedges64s2s2"}) {
+                          "nedgess2", "nedges64s2s2", "grid16l", "jgrid8l", "grid16c50l", "nedges64ls2",
+                          "nedges64l2", "nedges64ll", "l", "lnedges64"}) {
     auto p = ParsePrepass(bad);
     EXPECT_FALSE(p.ok()) << bad;
     if (!p.ok()) {
@@ -65,18 +72,19 @@ std::vector<size_t> CleanEdgePixels(const Scene& s, const std::vector<PixelDirec
   return out;
 }
 
-TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256StackedWiderUpTo1024) {
-  EXPECT_EQ(AutoPrepass(16), "nedges16s2");
-  EXPECT_EQ(AutoPrepass(64), "nedges16s2");
-  EXPECT_EQ(AutoPrepass(256), "nedges64s2");
-  EXPECT_EQ(AutoPrepass(1000), "nedges250s2");
-  EXPECT_EQ(AutoPrepass(1024), "nedges256s2");
+TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256StackedWiderAndALatticeUpTo1024) {
+  EXPECT_EQ(AutoPrepass(16), "nedges16s2l");
+  EXPECT_EQ(AutoPrepass(64), "nedges16s2l");
+  EXPECT_EQ(AutoPrepass(256), "nedges64s2l");
+  EXPECT_EQ(AutoPrepass(1000), "nedges250s2l");
+  EXPECT_EQ(AutoPrepass(1024), "nedges256s2l");
   EXPECT_EQ(AutoPrepass(1025), "nedges256");
   EXPECT_EQ(AutoPrepass(65536), "nedges256");
   for (uint32_t n : {1u, 16u, 256u, 4096u}) {
     auto p = ParsePrepass(AutoPrepass(n));
     ASSERT_TRUE(p.ok()) << n;
     EXPECT_TRUE(p->Reusable());
+    EXPECT_EQ(p->lattice, n <= 1024) << n;
   }
 }
 
