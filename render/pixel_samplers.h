@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/aligned_sets.h"
@@ -38,6 +39,9 @@ enum class LineOrientation {
 
 // Everything a sampler may need; each reads only its own fields.
 struct SamplerConfig {
+  SamplerConfig() = default;
+  // The usual start: a sampler and its N, every other field its default.
+  SamplerConfig(std::string sampler, uint32_t samples) : name(std::move(sampler)), n(samples) {}
   std::string name;
   uint32_t n = 0;
   // Directions per pixel (index y * W + x): `estimated` steers aligned,

@@ -107,7 +107,9 @@ TEST(RenderE2e, AlignedSamplersFromARealServerAreUnbiasedOnBothScenes) {
           ASSERT_TRUE(std::isfinite(mean)) << sampler << " pixel " << i;
           EXPECT_NEAR(mean, scene.Pixel(i).Exact(), 5.0 * sd / std::sqrt(double(kReps)) + 1e-12)
               << name << " " << sampler << " pixel " << i;
-          if (classes[i] == PixelClass::kEdge) EXPECT_GT(sd, 0.0) << name << " " << sampler;
+          if (classes[i] == PixelClass::kEdge) {
+            EXPECT_GT(sd, 0.0) << name << " " << sampler;
+          }
         }
       }
     }
@@ -248,7 +250,9 @@ TEST(RenderE2e, TheEstimateOverTheWireIsTheInProcessOne) {
     EXPECT_NEAR(wire->first.confidence, local.confidence, 1e-12) << "pixel " << i;
     const bool two = wire->has_second && wire->second.found;
     ASSERT_EQ(two, local.kind == PixelDirection::Kind::kTwo) << "pixel " << i;
-    if (two) EXPECT_NEAR(wire->second.theta_deg, local.theta2, 1e-9) << "pixel " << i;
+    if (two) {
+      EXPECT_NEAR(wire->second.theta_deg, local.theta2, 1e-9) << "pixel " << i;
+    }
   }
   EXPECT_EQ(edges, 12);
   EXPECT_GE(found, 8);  // most edge pixels have a direction: the comparison is not vacuous
