@@ -132,7 +132,8 @@ void AddRenderCommand(CLI::App& app) {
       ->check(FiniteIn(1e-6, 1.0));
   c->add_option("--prepass", o->request.prepass,
                  "pre-pass of the direction estimator (aligned, aligned-lattice, pmj02bn-sheared, line, segment): "
-                 "auto (nedgesM, M a quarter of N from 16 to 256, stacked 5 x 5 and on a lattice up to N = 1024), gridG, jgridG,\n"
+                 "auto (nedgesM, M a quarter of N from 16 to 256, stacked 5 x 5 up to N = 1024, on a lattice up to\n"
+                 "N = 1024 and, where the pixels share one domain, at every N), gridG, jgridG,\n"
                  "samplesM, edgesM or nedgesM (edgesM pooled with the neighbouring pixels' samples; sR after it:\n"
                  "on a shared domain, the (2R + 1)^2 pixels around, R from 1 to 4, default 1),\n"
                  "optionally cP (a confidence floor of P percent); a final l on samplesM, edgesM, nedgesM\n"

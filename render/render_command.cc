@@ -66,7 +66,7 @@ StatusOr<RenderSummary> RunRender(
     if (Status s = CheckLatticeSizeSpan(r.spp, r.lattice_size_span); !s.ok()) return s;
   }
   const std::vector<PixelDirection> exact = GeometryDirections(*scene);
-  auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp) : r.prepass);
+  auto prepass = ParsePrepass(r.prepass == kAutoPrepass ? AutoPrepass(r.spp, scene->domain()) : r.prepass);
   if (!prepass.ok()) return prepass.status();
   const std::unique_ptr<DirectionEstimator> estimator = MakeSpectralEstimator(*prepass);
   SamplerConfig c;

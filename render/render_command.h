@@ -26,7 +26,7 @@ struct RenderRequest {
   double segment_length = 0.5;
   int threads = 2;
   // The direction estimator's pre-pass (spectral_estimator.h); "auto" picks
-  // one by N (AutoPrepass).
+  // one by N and the scene's pixel domain (AutoPrepass).
   std::string prepass = kAutoPrepass;
   // Fold the pre-pass's samples into each pixel's estimate (prepass_reuse.h):
   // auto when the pre-pass allows it; on refuses one that does not;

@@ -98,8 +98,10 @@ StatusOr<Prepass> ParsePrepass(const std::string& spec) {
   return p;
 }
 
-std::string AutoPrepass(uint32_t n) {
-  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256)) + (n <= 1024 ? "s2l" : "");
+std::string AutoPrepass(uint32_t n, PixelDomain domain) {
+  const bool lattice = n <= 1024 || domain == PixelDomain::kShared;
+  return "nedges" + std::to_string(std::clamp<uint32_t>(n / 4, 16, 256)) + (n <= 1024 ? "s2" : "") +
+         (lattice ? "l" : "");
 }
 
 StatusOr<PrepassReuse> ParsePrepassReuse(const std::string& text) {

@@ -131,16 +131,17 @@ inline constexpr const char* kDefaultPrepass = "nedges256";
 // below Owen-Sobol at 320, and a sweep with the stacked shadow fit over
 // scene seeds 1-6 kept 64 (nedges32 at 288: 2.07 and 2.08x; nedges128 at
 // 384: 2.15 and 1.84x; docs/rendering.md, "Every sample counted").
-// Up to N = 1024 the samples are the lattice pre-pass (suffix l,
-// render/prepass_lattice.h, since 2026-11-28): aligned lattices' edge MSE
-// 0.97-0.98x of the Owen-Sobol pre-pass's at 256 + 64 (scene seeds 1-18,
-// both scenes; the worst seeds against the best other sampler higher too)
-// and 0.95-0.99x at 1024 + 256; at 4096 + 256 the mean moved by 0-4% but
-// single seeds by up to 26% either way, one antialias scene from a win to
-// a loss and one shadow scene the other way, so above 1024 the pre-pass
-// stays Owen-Sobol (docs/rendering.md, "A lattice pre-pass").
+// The samples are the lattice pre-pass (suffix l, render/prepass_lattice.h,
+// since 2026-11-28) up to N = 1024, and at every N where the pixels share
+// their domain (the stacked fit): aligned lattices' edge MSE 0.96-0.98x of
+// the Owen-Sobol pre-pass's at 256 + 64 (scene seeds 1-18, both scenes; the
+// worst seeds against the best other sampler higher too), 0.95-0.99x at
+// 1024 + 256, and on shadow 0.94-1.00x at 4096 + 256 (seeds 1-9, 13-18);
+// on footprints at 4096 + 256 single scenes moved by up to 27% either way
+// (antialias seed 3 from 1.14x the best other sampler to 0.90x), so there
+// the pre-pass stays Owen-Sobol (docs/rendering.md, "A lattice pre-pass").
 inline constexpr const char* kAutoPrepass = "auto";
-std::string AutoPrepass(uint32_t n);
+std::string AutoPrepass(uint32_t n, PixelDomain domain);
 // Whether and how a pre-pass is folded into the pixel's estimate
 // (render/prepass_reuse.h): kAuto, the default, whenever the pre-pass is
 // reusable (the default one is), a direction-less pixel continuing the

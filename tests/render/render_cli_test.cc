@@ -116,6 +116,25 @@ TEST_F(RenderCli, TheSampleBudgetCountsThePrepass) {
   EXPECT_NE(Said(r).find("points a key on average"), std::string::npos) << Said(r);
 }
 
+TEST_F(RenderCli, TheAutomaticPrepassIsALatticeUpTo1024AndOnASharedDomain) {
+  // The render's note names the pre-pass auto chose: a lattice (suffix l)
+  // at N = 256 on both scenes; above 1024 on the shadow's shared light
+  // square only (render/spectral_estimator.h, AutoPrepass).
+  struct Case {
+    const char* scene;
+    int n;
+    const char* prepass;
+  };
+  for (const Case& c : {Case{"antialias", 256, "nedges64s2l ("}, Case{"shadow", 256, "nedges64s2l ("},
+                        Case{"antialias", 2048, "nedges256 ("}, Case{"shadow", 2048, "nedges256l ("}}) {
+    const CliRun r = RunCli(std::string("render --scene ") + c.scene + " --size 4 --sampler aligned-lattice -n " +
+                            std::to_string(c.n) + " -o " + dir_ + "/auto.npy");
+    ASSERT_EQ(r.exit_code, 0) << Said(r);
+    EXPECT_NE(Said(r).find(std::string("EstimateEdgeLines, ") + c.prepass), std::string::npos)
+        << c.scene << " " << c.n << ": " << Said(r);
+  }
+}
+
 TEST_F(RenderCli, BadInvocationsAreOneLineUsageErrors) {
   for (const std::string& args :
        {std::string("render --sampler no-such -n 16 -o x.npy"), std::string("render --sampler owen-sobol -o x.npy"),

@@ -72,19 +72,26 @@ std::vector<size_t> CleanEdgePixels(const Scene& s, const std::vector<PixelDirec
   return out;
 }
 
-TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256StackedWiderAndALatticeUpTo1024) {
-  EXPECT_EQ(AutoPrepass(16), "nedges16s2l");
-  EXPECT_EQ(AutoPrepass(64), "nedges16s2l");
-  EXPECT_EQ(AutoPrepass(256), "nedges64s2l");
-  EXPECT_EQ(AutoPrepass(1000), "nedges250s2l");
-  EXPECT_EQ(AutoPrepass(1024), "nedges256s2l");
-  EXPECT_EQ(AutoPrepass(1025), "nedges256");
-  EXPECT_EQ(AutoPrepass(65536), "nedges256");
-  for (uint32_t n : {1u, 16u, 256u, 4096u}) {
-    auto p = ParsePrepass(AutoPrepass(n));
-    ASSERT_TRUE(p.ok()) << n;
-    EXPECT_TRUE(p->Reusable());
-    EXPECT_EQ(p->lattice, n <= 1024) << n;
+TEST(SpectralEstimator, TheAutomaticPrepassIsAQuarterOfNBetween16And256StackedWiderUpTo1024OnALattice) {
+  constexpr PixelDomain kFoot = PixelDomain::kFootprint, kShared = PixelDomain::kShared;
+  EXPECT_EQ(AutoPrepass(16, kFoot), "nedges16s2l");
+  EXPECT_EQ(AutoPrepass(64, kFoot), "nedges16s2l");
+  EXPECT_EQ(AutoPrepass(256, kFoot), "nedges64s2l");
+  EXPECT_EQ(AutoPrepass(1000, kFoot), "nedges250s2l");
+  EXPECT_EQ(AutoPrepass(1024, kFoot), "nedges256s2l");
+  EXPECT_EQ(AutoPrepass(1025, kFoot), "nedges256");
+  EXPECT_EQ(AutoPrepass(65536, kFoot), "nedges256");
+  // Where the pixels share their domain, a lattice at every N.
+  EXPECT_EQ(AutoPrepass(256, kShared), "nedges64s2l");
+  EXPECT_EQ(AutoPrepass(4096, kShared), "nedges256l");
+  EXPECT_EQ(AutoPrepass(65536, kShared), "nedges256l");
+  for (PixelDomain domain : {kFoot, kShared}) {
+    for (uint32_t n : {1u, 16u, 256u, 4096u}) {
+      auto p = ParsePrepass(AutoPrepass(n, domain));
+      ASSERT_TRUE(p.ok()) << n;
+      EXPECT_TRUE(p->Reusable());
+      EXPECT_EQ(p->lattice, n <= 1024 || domain == kShared) << n;
+    }
   }
 }
 
