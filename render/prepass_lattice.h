@@ -17,9 +17,11 @@ namespace alignset::render {
 // than Owen-Sobol points (no two closer than its minimum distance), so the
 // crossings sit more evenly along an edge. With the same fit, stack and
 // aligned lattices the rendered edge MSE was 0.95-0.99x the Owen-Sobol
-// pre-pass's on the means at 256 + 64 and 1024 + 256 (scene seeds 1-18);
-// at 4096 + 256 single scenes moved by up to 26% either way, so `auto`
-// takes it up to N = 1024 (docs/rendering.md, "A lattice pre-pass").
+// pre-pass's on the means at 256 + 64 and 1024 + 256 (scene seeds 1-18)
+// and on the shared domain at 4096 + 256; on footprints at 4096 + 256
+// single scenes moved by up to 27% either way, so `auto` takes it up to
+// N = 1024 and on a shared domain (AutoPrepass; docs/rendering.md, "A
+// lattice pre-pass").
 //
 // Its mean is an unbiased estimate of the pixel (the shift is uniform), so a
 // pixel with a direction reuses it with the count weights as it would an

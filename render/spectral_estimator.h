@@ -83,8 +83,7 @@ struct Prepass {
   int min_confidence_pct = 0;
   int stack_radius = kDefaultStackRadius;  // nedgesM on a shared domain
   // A suffix "l" on a scattered pre-pass: its M points are the pre-pass
-  // lattice of render/prepass_lattice.h instead of Owen-Sobol points, and
-  // an aligned-lattice sampler reusing it lifts it into its own lattice.
+  // lattice of render/prepass_lattice.h instead of Owen-Sobol points.
   bool lattice = false;
   std::string Name() const;
   bool Scattered() const {
