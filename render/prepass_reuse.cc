@@ -51,11 +51,9 @@ class Reused : public PixelSampler {
       : inner_(std::move(inner)), dirs_(dirs), n_(n), continue_(continue_sequence) {}
   double Estimate(const PixelIntegrand& f, const PixelTask& t) const override {
     const PixelDirection& d = (*dirs_)[t.index];
-    if (continue_ && d.kind == PixelDirection::Kind::kNone && d.prepass_lattice) {
-      return inner_->Estimate(f, t);
-    }
     if (continue_ && d.kind == PixelDirection::Kind::kNone && d.prepass_samples > 0) {
-      return ContinuedPrepass(f, d, n_);
+      // A lattice has no sequence to continue: the sampler's own points alone.
+      return d.prepass_lattice ? inner_->Estimate(f, t) : ContinuedPrepass(f, d, n_);
     }
     return WithPrepass(d, inner_->Estimate(f, t), n_);
   }

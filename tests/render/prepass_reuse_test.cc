@@ -57,6 +57,22 @@ TEST(PrepassReuse, TheOwenSobolPrepassHandsOnItsMeanAndTheGridsDoNot) {
   }
 }
 
+// aligned-lattice over a table with no sets, so every pixel of `dirs` is
+// direction-less and takes the sampler's Owen-Sobol branch; the pre-pass
+// reused (count weights) or not, continued or not.
+std::unique_ptr<PixelSampler> DirectionLessLatticeSampler(const std::vector<PixelDirection>& dirs,
+                                                         const AlignedSetTable& empty, bool reuse,
+                                                         bool continued) {
+  SamplerConfig c{"aligned-lattice", empty.n};
+  c.estimated = &dirs;
+  c.sets = &empty;
+  c.reuse_prepass = reuse;
+  c.continue_prepass = continued;
+  auto s = MakePixelSampler(c);
+  EXPECT_TRUE(s.ok()) << s.status().message();
+  return s.ok() ? std::move(*s) : nullptr;
+}
+
 TEST(PrepassLattice, ThePrepassIsAShiftedRankOneLatticeWhoseMeanIsHandedOn) {
   for (uint32_t m : {16u, 64u, 256u}) {
     const uint32_t g = Rank1Generator(m);
@@ -105,17 +121,9 @@ TEST(PrepassLattice, ADirectionLessPixelLeavesTheLatticePrepassOut) {
   std::vector<PixelDirection> dirs(scene.size());
   AlignedSetTable empty;
   empty.n = kN;
-  auto make = [&](bool reuse, bool continued) -> std::unique_ptr<PixelSampler> {
-    SamplerConfig c{"aligned-lattice", kN};
-    c.estimated = &dirs;
-    c.sets = &empty;
-    c.reuse_prepass = reuse;
-    c.continue_prepass = continued;
-    auto s = MakePixelSampler(c);
-    EXPECT_TRUE(s.ok()) << s.status().message();
-    return s.ok() ? std::move(*s) : nullptr;
-  };
-  const auto alone = make(false, true), continued = make(true, true), weighted = make(true, false);
+  const auto alone = DirectionLessLatticeSampler(dirs, empty, false, true);
+  const auto continued = DirectionLessLatticeSampler(dirs, empty, true, true);
+  const auto weighted = DirectionLessLatticeSampler(dirs, empty, true, false);
   ASSERT_TRUE(alone && continued && weighted);
   int checked = 0;
   for (size_t i = 0; i < classes.size() && checked < 4; i += 41) {
@@ -254,18 +262,13 @@ TEST(PrepassReuse, ContinuingTheSequenceBeatsWeightingOnSmoothPixels) {
   for (size_t i = 0; i < classes.size() && counted < 6; i += 37) {
     if (classes[i] != PixelClass::kSmooth) continue;
     for (Mode mode : {kAlone, kWeighted, kContinued}) {
-      SamplerConfig c{"aligned-lattice", kN};
-      c.estimated = &dirs;
-      c.sets = &empty;
-      c.reuse_prepass = mode != kAlone;
-      c.continue_prepass = mode == kContinued;
-      auto s = MakePixelSampler(c);
-      ASSERT_TRUE(s.ok()) << s.status().message();
+      const auto s = DirectionLessLatticeSampler(dirs, empty, mode != kAlone, mode == kContinued);
+      ASSERT_TRUE(s);
       double sum2 = 0.0;
       for (int r = 1; r <= kReps; ++r) {
         dirs[i] = estimator->Estimate(scene.Pixel(i), HashCombine(r, i));
         ASSERT_EQ(dirs[i].kind, PixelDirection::Kind::kNone) << "smooth pixel " << i << " replicate " << r;
-        const double v = RenderPixel(scene, **s, int(i % scene.width()), int(i / scene.width()), r) -
+        const double v = RenderPixel(scene, *s, int(i % scene.width()), int(i / scene.width()), r) -
                          scene.Pixel(i).Exact();
         sum2 += v * v;
       }
