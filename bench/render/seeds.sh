@@ -10,6 +10,7 @@
 #   bash bench/render/seeds.sh                       # seeds 1 2 3
 #   SEEDS="4 5" N=1024 bash bench/render/seeds.sh    # others
 #   PREPASS=edges64 N=256 SAMPLERS=owen-sobol,aligned-lattice,aligned-lattice+reuse bash bench/render/seeds.sh
+#   SCENES=shadow PREPASS=nedges256l N=4096 bash bench/render/seeds.sh   # one scene, its own pre-pass
 #
 # Two-direction sets up to TWO_MAX_N: by default 1024 when the optimized
 # sets are among the samplers (`aligned*`: filling their pairs at 4096 takes
@@ -21,6 +22,7 @@ cd "$(dirname "$0")/../.."
 BUILD_DIR="${BUILD_DIR:-build}"
 SEEDS="${SEEDS:-1 2 3}"
 N="${N:-256,1024,4096}"
+SCENES="${SCENES:-antialias,shadow}"
 SAMPLERS="${SAMPLERS:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1,aligned,aligned+reuse,aligned-exact,aligned-lattice,aligned-lattice+reuse,aligned-lattice+unbiased,aligned-lattice-exact}"
 COUNTED="${COUNTED:-owen-sobol,pmj02bn,rank1-lattice,screen-space-rank1}"
 RAW="${RAW:-$BUILD_DIR/render-seeds}"
@@ -41,7 +43,7 @@ start_render_server
 echo "seeds: alignset-server on $ADDR"
 
 for seed in $SEEDS; do
-  common=(--two-max-n "$TWO_MAX_N" --prepass "$PREPASS")
+  common=(--two-max-n "$TWO_MAX_N" --prepass "$PREPASS" --scenes "$SCENES")
   seed_render_bench "$seed" "${common[@]}" --out "$RAW/seed$seed" --n "$N" \
     --samplers "$SAMPLERS"
   counted_n=$(/usr/bin/python3 -c "
