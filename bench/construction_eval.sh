@@ -19,8 +19,9 @@ N="${N:-256,1024,4096}"
 THETA="${THETA:-10,30,45,63,82}"
 SHIFTS="${SHIFTS:-256}"
 GAUSSIANS="${GAUSSIANS:-1024}"
-# Two-direction sets, A:B pairs, judged on the edges of both directions.
-PAIRS="${PAIRS:-30:120,20:65}"
+# Two-direction sets, A:B pairs, judged on the edges of both directions;
+# PAIRS= (set and empty) measures none.
+PAIRS="${PAIRS-30:120,20:65}"
 CONSTRUCTIONS="${CONSTRUCTIONS:-lattice tent-lattice net optimized}"
 OUT="${1:-bench/results/construction_eval.tsv}"
 WORK="$BUILD_DIR/construction-eval"
