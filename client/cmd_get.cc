@@ -316,8 +316,9 @@ void AddGetCommand(CLI::App& app) {
       ->check(CLI::IsMember({"1", "0.25"}));
   c->add_option("--construction", o->construction,
                 "optimized (the server's optimized sets), lattice (an aligned rank-1\n"
-                "lattice) or net (an aligned (0,m,2)-net, N a power of two); each cached\n"
-                "apart from the others")
+                "lattice), tent-lattice (the lattice folded by 1 - |2u - 1| after its shift)\n"
+                "or net (an aligned (0,m,2)-net, N a power of two); each cached apart from\n"
+                "the others")
       ->capture_default_str()
       ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
   c->add_flag("-q,--quiet", o->quiet, "no progress display");

@@ -128,8 +128,9 @@ void AddPrecomputeCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"1", "0.25"}));
   c->add_option("--construction", o->construction,
-                "optimized (the server's optimized sets), lattice (aligned rank-1 lattices) or\n"
-                "net (aligned (0,m,2)-nets, N a power of two), each cached apart")
+                "optimized (the server's optimized sets), lattice (aligned rank-1 lattices),\n"
+                "tent-lattice (those lattices folded by 1 - |2u - 1| after their shift) or net\n"
+                "(aligned (0,m,2)-nets, N a power of two), each cached apart")
       ->capture_default_str()
       ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
   AddServiceOptions(c, &o->service);
