@@ -70,6 +70,31 @@ TEST(CliConventions, EveryCommandAnswersHelpOnStdoutWithStatusZero) {
 }
 
 #ifdef ALIGNSET_HAVE_STORAGE
+// Every command that takes --construction describes each name it accepts in
+// its help, not only in the list of allowed values (get and precompute once
+// accepted tent-lattice without a word on what it is).
+TEST(CliConventions, ConstructionHelpDescribesEveryAcceptedName) {
+  std::vector<std::string> commands = {"optimize"};
+#ifdef ALIGNSET_HAVE_STORAGE
+  commands.push_back("get");
+  commands.push_back("precompute");
+#endif
+  for (const std::string& cmd : commands) {
+    const CliRun r = RunCli(cmd + " --help");
+    ASSERT_EQ(r.exit_code, 0) << cmd;
+    // The help wraps its descriptions into a column: read it as one line.
+    std::string text;
+    for (char c : r.out) {
+      const bool space = c == ' ' || c == '\n';
+      if (!(space && !text.empty() && text.back() == ' ')) text.push_back(space ? ' ' : c);
+    }
+    for (const char* name : {" optimized (", " lattice (", " tent-lattice (", " net ("}) {
+      EXPECT_NE(text.find(name), std::string::npos)
+          << cmd << " --help does not describe '" << name << "':\n" << r.out;
+    }
+  }
+}
+
 TEST(CliConventions, VersionNamesReleaseAlgorithmVersionAndProfile) {
   for (const char* flag : {"--version", "-V"}) {
     const CliRun r = RunCli(flag);
