@@ -93,6 +93,10 @@ CLI::Validator FiniteIn(double lo, double hi) {
       "", "finite number in range");
 }
 
+CLI::Validator ConstructionName() {
+  return CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"});
+}
+
 CLI::App* AddCommand(CLI::App& parent, const std::string& name, const std::string& description) {
   // The footer (exit statuses) is inherited from the parent.
   return parent.add_subcommand(name, description);

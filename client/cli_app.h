@@ -44,6 +44,10 @@ CLI::Validator IntegerIn(int64_t lo, int64_t hi);
 CLI::Validator SeedValue();
 CLI::Validator FiniteNumber();
 CLI::Validator FiniteIn(double lo, double hi);
+// The constructions a set can be made by, in the server's words
+// (server/construction.h): optimized, lattice, tent-lattice, net. One list, so
+// that get, precompute and optimize accept the same names.
+CLI::Validator ConstructionName();
 
 // A subcommand of `parent`; it inherits the parent's footer (the exit
 // statuses), so set that first.

@@ -320,7 +320,7 @@ void AddGetCommand(CLI::App& app) {
                 "or net (an aligned (0,m,2)-net, N a power of two); each cached apart from\n"
                 "the others")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
+      ->check(ConstructionName());
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunGet(*o)); });

@@ -330,7 +330,7 @@ void AddOptimizeCommand(CLI::App& app) {
                 "folded edges: no loss on smooth functions that are not periodic) or net (an\n"
                 "aligned (0,m,2)-net: its scrambling chosen for those edges; N a power of two)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
+      ->check(ConstructionName());
   c->add_option("--window", o->window,
                 "lattice, tent-lattice, net: the half-width in degrees of the window of edge\n"
                 "directions scored (default 1; tent-lattice 2)")

@@ -132,7 +132,7 @@ void AddPrecomputeCommand(CLI::App& app) {
                 "tent-lattice (those lattices folded by 1 - |2u - 1| after their shift) or net\n"
                 "(aligned (0,m,2)-nets, N a power of two), each cached apart")
       ->capture_default_str()
-      ->check(CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"}));
+      ->check(ConstructionName());
   AddServiceOptions(c, &o->service);
   c->callback([o] { Finish(RunPrecompute(*o)); });
 }
