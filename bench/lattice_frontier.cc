@@ -34,6 +34,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -44,19 +45,18 @@
 #include "core/analysis/convex_polygon.h"
 #include "core/analysis/folded_indicator_spectrum.h"
 #include "core/analysis/integer_indicator_spectrum.h"
+#include "core/analysis/integrands.h"
 #include "core/spectral/frequency_set.h"
 
 namespace {
 
 constexpr double kDeltas[] = {0.0, 0.5, 1.0, 2.0};
 
-// The edge {p : (p - c) . n >= 0}, c = (1/2, 1/2) + offset n, as
-// construction_eval.py's.
+// The edge {p : (p - c) . n >= 0}, c = (1/2, 1/2) + offset n: core's step
+// edge, whose centre and offset are construction_eval.py's. Offsets within
+// [-1/4, 1/4] never clip it away.
 alignset::Polygon EdgePolygon(double normal_deg, double offset) {
-  const double t = normal_deg * M_PI / 180.0;
-  const alignset::Vec2 n{std::cos(t), std::sin(t)};
-  const double c = (0.5 + offset * n.x) * n.x + (0.5 + offset * n.y) * n.y;
-  return alignset::ClipHalfPlane(alignset::UnitSquarePolygon(), n, c);
+  return alignset::StepEdge(normal_deg, offset)->pieces().front().polygon;
 }
 
 // A lattice of N points by its dual, a sublattice of Z^2 of index N in
@@ -87,12 +87,10 @@ std::vector<alignset::Frequency> DualHalfDisk(const DualBasis& basis, int radius
 
 // One scored edge's spectrum, plain or folded.
 struct EdgeSpectrum {
-  std::vector<alignset::IntegerIndicatorSpectrum> plain;  // one, or none when folded
-  std::vector<alignset::FoldedIndicatorSpectrum> folded;  // one, or none when plain
+  std::optional<alignset::IntegerIndicatorSpectrum> plain;
+  std::optional<alignset::FoldedIndicatorSpectrum> folded;
   int delta_index = 0;
-  double Energy(int hx, int hy) const {
-    return plain.empty() ? folded[0].Energy(hx, hy) : plain[0].Energy(hx, hy);
-  }
+  double Energy(int hx, int hy) const { return plain ? plain->Energy(hx, hy) : folded->Energy(hx, hy); }
 };
 
 }  // namespace
@@ -169,9 +167,9 @@ int main(int argc, char** argv) {
           EdgeSpectrum e;
           e.delta_index = di;
           if (folded) {
-            e.folded.emplace_back(p, radius);
+            e.folded.emplace(p, radius);
           } else {
-            e.plain.emplace_back(p, radius);
+            e.plain.emplace(p, radius);
           }
           edges.push_back(std::move(e));
         }
@@ -182,13 +180,18 @@ int main(int argc, char** argv) {
     auto work = [&] {
       for (size_t i; (i = next.fetch_add(1)) < lattices.size();) {
         const auto dual = DualHalfDisk(lattices[i], radius);
+        // Which dual points lie within R / 2, once for all the edges.
+        std::vector<char> inside(dual.size());
+        for (size_t k = 0; k < dual.size(); ++k) {
+          inside[k] = std::hypot(static_cast<double>(dual[k].a), static_cast<double>(dual[k].b)) <= half;
+        }
         std::array<double, 4> sum{}, count{};
         for (const EdgeSpectrum& e : edges) {
           double head = 0.0, inner = 0.0;
-          for (const auto& h : dual) {
-            const double v = 2.0 * e.Energy(h.a, h.b);
+          for (size_t k = 0; k < dual.size(); ++k) {
+            const double v = 2.0 * e.Energy(dual[k].a, dual[k].b);
             head += v;
-            if (std::hypot(static_cast<double>(h.a), static_cast<double>(h.b)) <= half) inner += v;
+            if (inside[k]) inner += v;
           }
           sum[e.delta_index] += std::max(head, 2.0 * head - inner);
           count[e.delta_index] += 1.0;

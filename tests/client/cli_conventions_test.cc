@@ -69,13 +69,12 @@ TEST(CliConventions, EveryCommandAnswersHelpOnStdoutWithStatusZero) {
   }
 }
 
-#ifdef ALIGNSET_HAVE_STORAGE
 // Every command that takes --construction describes each name it accepts in
 // its help, not only in the list of allowed values (get and precompute once
 // accepted tent-lattice without a word on what it is).
 TEST(CliConventions, ConstructionHelpDescribesEveryAcceptedName) {
   std::vector<std::string> commands = {"optimize"};
-#ifdef ALIGNSET_HAVE_STORAGE
+#ifdef ALIGNSET_HAVE_SERVICE
   commands.push_back("get");
   commands.push_back("precompute");
 #endif
@@ -95,6 +94,7 @@ TEST(CliConventions, ConstructionHelpDescribesEveryAcceptedName) {
   }
 }
 
+#ifdef ALIGNSET_HAVE_STORAGE
 TEST(CliConventions, VersionNamesReleaseAlgorithmVersionAndProfile) {
   for (const char* flag : {"--version", "-V"}) {
     const CliRun r = RunCli(flag);
