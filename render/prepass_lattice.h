@@ -20,8 +20,8 @@ namespace alignset::render {
 // pre-pass's on the means at 256 + 64 and 1024 + 256 (scene seeds 1-18)
 // and on the shared domain at 4096 + 256; on footprints at 4096 + 256
 // single scenes moved by up to 27% either way, so `auto` takes it up to
-// N = 1024 and on a shared domain (AutoPrepass; docs/rendering.md, "A
-// lattice pre-pass").
+// N = 1024 and on a shared domain (AutoPrepass; docs/rendering.md,
+// "Every sample counted").
 //
 // Its mean is an unbiased estimate of the pixel (the shift is uniform), so a
 // pixel with a direction reuses it with the count weights as it would an

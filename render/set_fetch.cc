@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/construction.h"
 
 namespace alignset::render {
 
@@ -11,10 +12,11 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
                                            const FetchProgressFn& progress,
                                            const std::string& construction) {
-  const bool lattice = construction == "lattice" || construction == "tent-lattice";
-  if (!lattice && !construction.empty() && construction != "optimized") {
+  const Construction* made = FindConstruction(construction);
+  if (made == nullptr || !(made->optimized() || made->lattice())) {
     return Status::InvalidArgument("a render reads optimized sets or lattices, not '" + construction + "'");
   }
+  const bool lattice = made->lattice();
   const std::string what = lattice ? construction : "optimize";
   auto report = [&](const std::string& stage, double done, double total, const std::string& d) {
     if (progress) progress(stage, done, total, d);
@@ -48,7 +50,7 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
 
   AlignedSetTable table;
   table.n = n;
-  table.folded = construction == "tent-lattice";
+  table.folded = made->folded();
   table.one.resize(180);
   std::vector<SetRequest> items;
   // The client library's key -> request mapping (<alignset/pixel_sampler.h>).

@@ -138,7 +138,7 @@ inline constexpr const char* kDefaultPrepass = "nedges256";
 // 1024 + 256, and on shadow 0.94-1.00x at 4096 + 256 (seeds 1-9, 13-18);
 // on footprints at 4096 + 256 single scenes moved by up to 27% either way
 // (antialias seed 3 from 1.14x the best other sampler to 0.90x), so there
-// the pre-pass stays Owen-Sobol (docs/rendering.md, "A lattice pre-pass").
+// the pre-pass stays Owen-Sobol (docs/rendering.md, "Every sample counted").
 inline constexpr const char* kAutoPrepass = "auto";
 std::string AutoPrepass(uint32_t n, PixelDomain domain);
 // Whether and how a pre-pass is folded into the pixel's estimate

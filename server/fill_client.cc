@@ -43,8 +43,8 @@ FillFunction MakeWriterFill(const std::string& address, const std::string& token
     // A lattice or net key asks the writer for its construction; any other
     // profile is the optimized construction (checked against the answer
     // below).
-    if (const Construction c = ConstructionOfProfile(key.profile); c != Construction::kOptimized) {
-      req.set_construction(ConstructionName(c));
+    if (const Construction& c = ConstructionOfProfile(key.profile); !c.optimized()) {
+      req.set_construction(std::string(c.name));
     }
     grpc::ClientContext ctx;
     ctx.set_deadline(std::chrono::system_clock::now() +

@@ -34,7 +34,7 @@ void IntegrityWatch::Run(const std::string& why) {
   if (!problems.ok()) {
     metrics_->database_integrity_errors.store(1);
     spdlog::error("database {} cannot be checked {}: {}; repair it with 'alignset cache recover "
-                  "--db {} --out NEW' while the server is stopped",
+                  "--db {} --out NEW' while the server is stopped (docs/operations.md, \"Operations\")",
                   db_path_, why, problems.status().message(), db_path_);
     return;
   }
@@ -45,7 +45,7 @@ void IntegrityWatch::Run(const std::string& why) {
   }
   spdlog::error("database {} is damaged: quick_check {} found {} problem(s), the first: {}. Sets on "
                 "damaged pages are recomputed but cannot be stored; repair it with 'alignset cache "
-                "recover --db {} --out NEW' while the server is stopped (README, Operations)",
+                "recover --db {} --out NEW' while the server is stopped (docs/operations.md, \"Operations\")",
                 db_path_, why, problems->size(), problems->front(), db_path_);
 }
 

@@ -18,7 +18,7 @@ namespace alignset::server {
 // libmicrohttpd's own polls every connection; a scrape renders the text on
 // it. With a token (the gRPC service's, --token-file) every request must
 // carry "Authorization: Bearer <token>" or gets 401; without one it is open,
-// and meant for a pod-internal or private address (README, "Operations").
+// and meant for a pod-internal or private address (docs/operations.md, "Operations").
 class MetricsHttpServer {
  public:
   // Listens on `address` (HOST:PORT, port 0: the kernel picks one); every

@@ -7,9 +7,6 @@
 #include <iterator>
 
 #include "core/align/key_lineage.h"
-#include "core/optimize/aligned_lattice.h"
-#include "core/optimize/aligned_net.h"
-#include "core/optimize/realization.h"
 
 namespace alignset::server {
 
@@ -126,12 +123,7 @@ void Ticket::OnDone(std::function<void()> fn) {
 
 // ------------------------------------------------------------- Scheduler
 
-Scheduler::Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics)
-    : options_(options),
-      cache_(cache),
-      metrics_(metrics),
-      lru_(options.memory_cache_bytes),
-      lattice_terms_(options.lattice_terms_bytes) {}
+Scheduler::Scheduler(const Options& options, Metrics* metrics) : options_(options), metrics_(metrics) {}
 
 StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
                                                        storage::SetCache* cache, Metrics* metrics) {
@@ -148,16 +140,22 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   // part of the profile).
   o.optimizer.progress_every = 1;
   if (o.read_only) o.max_cache_bytes = 0;
-  std::unique_ptr<Scheduler> s(new Scheduler(o, cache, metrics));
-  if (o.max_cache_bytes > 0) {
-    metrics->max_cache_bytes = o.max_cache_bytes;
-    CacheEvictor::Options eo;
-    eo.max_bytes = o.max_cache_bytes;
-    eo.pinned = [p = s.get()](const std::string& name) { return p->InFlight(name); };
-    eo.evicted = [p = s.get()](const std::string& name) { p->lru_.Erase(name); };
-    s->evictor_ = std::make_unique<CacheEvictor>(cache, metrics, std::move(eo));
-    if (Status st = s->evictor_->Start(); !st.ok()) return st;
-  }
+  std::unique_ptr<Scheduler> s(new Scheduler(o, metrics));
+  SetProducer::Options po;
+  po.optimizer = o.optimizer;
+  po.seed = o.seed;
+  po.threads_per_worker = o.threads_per_worker;
+  po.memory_cache_bytes = o.memory_cache_bytes;
+  po.lattice_terms_bytes = o.lattice_terms_bytes;
+  po.on_write_error = o.on_write_error;
+  po.read_only = o.read_only;
+  po.fill = o.fill;
+  po.max_cache_bytes = o.max_cache_bytes;
+  // A key is pinned while its job is in flight, its write included.
+  po.pinned = [p = s.get()](const std::string& name) { return p->InFlight(name); };
+  auto producer = SetProducer::Create(po, cache, metrics);
+  if (!producer.ok()) return producer.status();
+  s->producer_ = std::move(producer).value();
   for (int i = 0; i < options.workers; ++i) {
     auto engine = options.engine_factory
                       ? options.engine_factory()
@@ -171,39 +169,10 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   return s;
 }
 
-Scheduler::~Scheduler() { Shutdown(); }
-
-std::string Scheduler::ProfileFor(uint32_t n, Construction construction) const {
-  if (construction == Construction::kLattice) return kLatticeProfile;
-  if (construction == Construction::kNet) return kNetProfile;
-  if (construction == Construction::kTentLattice) return kTentLatticeProfile;
-  std::lock_guard<std::mutex> lock(profile_mu_);
-  auto it = profiles_.find(n);
-  if (it != profiles_.end()) return it->second;
-  std::string p = storage::ProfileId(DefaultFrequencyParams(n), options_.optimizer, options_.seed);
-  profiles_.emplace(n, p);
-  return p;
-}
-
-storage::SetKey Scheduler::KeyFor(uint32_t n, const CanonicalDirections& dirs,
-                                  uint32_t realization, Construction construction) const {
-  return storage::SetKey{n, dirs, ProfileFor(n, construction), realization};
-}
-
-StatusOr<bool> Scheduler::IsStored(const storage::SetKey& key) {
-  const std::string name = KeyString(key);
-  if (lru_.Get(name)) return true;
-  // A full read, not Contains(): the checksum is verified, so a precompute
-  // re-run recomputes a corrupt row instead of counting it as cached.
-  StatusOr<storage::SetRecord> stored = cache_->Get(key);
-  if (stored.ok()) return true;
-  // A corrupt row is not stored; the Acquire() that follows reads it again,
-  // and reports and counts it there (once).
-  if (stored.status().code() == Status::Code::kNotFound ||
-      stored.status().code() == Status::Code::kDataLoss) {
-    return false;
-  }
-  return stored.status();
+// The producer goes first: its evictor asks InFlight() until it stops.
+Scheduler::~Scheduler() {
+  Shutdown();
+  producer_.reset();
 }
 
 // ------------------------------------------------- the queue (mu_ held)
@@ -212,6 +181,7 @@ void Scheduler::EnqueueLocked(Job* job) {
   clients_[job->client].waiting[job->priority].insert({job->seq, job});
   ++waiting_[job->priority];
   if (job->paused) ++paused_;
+  CountsChangedLocked();
 }
 
 void Scheduler::DequeueLocked(Job* job) {
@@ -219,6 +189,7 @@ void Scheduler::DequeueLocked(Job* job) {
   if (it == clients_.end() || it->second.waiting[job->priority].erase({job->seq, job}) == 0) return;
   --waiting_[job->priority];
   if (job->paused) --paused_;
+  CountsChangedLocked();
 }
 
 void Scheduler::LeaveClientLocked(Job* job) {
@@ -298,11 +269,7 @@ size_t Scheduler::PositionLocked(const Job& job) const {
 StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key, Priority priority,
                                                      const std::string& client) {
   const std::string name = KeyString(key);
-  if (auto hit = lru_.Get(name)) {
-    metrics_->cache_hits_memory.fetch_add(1, std::memory_order_relaxed);
-    if (evictor_) evictor_->Touch(name, key);
-    return Ready(std::move(hit));
-  }
+  if (auto hit = producer_->FromMemory(name, key, /*touch=*/true)) return Ready(std::move(hit));
   const int prio = static_cast<int>(priority);
   // Joins the key's job if there is one; mu_ held.
   auto join = [&](const std::shared_ptr<Job>& job) {
@@ -323,14 +290,8 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
     if (auto it = inflight_.find(name); it != inflight_.end()) return join(it->second);
   }
   // SQLite outside the lock: reads run concurrently with everything else.
-  auto stored = cache_->Get(key);
-  if (stored.ok()) {
-    auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
-    lru_.Put(name, entry);
-    metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
-    if (evictor_) evictor_->Touch(name, key);
-    return Ready(std::move(entry));
-  }
+  auto stored = producer_->FromCache(name, key);
+  if (stored.ok()) return Ready(std::move(stored).value());
   if (stored.status().code() == Status::Code::kDataLoss) {
     metrics_->corrupt_rows.fetch_add(1, std::memory_order_relaxed);
     spdlog::warn("corrupt row {}: {}; recomputing", name, stored.status().message());
@@ -350,10 +311,7 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
   if (stopping_) return Status::Unavailable("the server is shutting down");
   // Another request may have started (or finished) the job meanwhile.
   if (auto it = inflight_.find(name); it != inflight_.end()) return join(it->second);
-  if (auto hit = lru_.Get(name)) {
-    metrics_->cache_hits_memory.fetch_add(1, std::memory_order_relaxed);
-    return Ready(std::move(hit));
-  }
+  if (auto hit = producer_->FromMemory(name, key, /*touch=*/false)) return Ready(std::move(hit));
   const size_t waiting = waiting_[0] + waiting_[1];
   if (waiting >= static_cast<size_t>(options_.max_queue)) {
     const uint64_t n = metrics_->rejected_queue_full.fetch_add(1, std::memory_order_relaxed) + 1;
@@ -463,6 +421,7 @@ void Scheduler::WorkerLoop(SpectralEngine* engine) {
       clients_[job->client].running.insert(job.get());
       ++job->version;
       ++running_;
+      CountsChangedLocked();
       job->cv.notify_all();
     }
     const SliceEnd end = RunSlice(job, engine, engine_job == job->seq);
@@ -471,6 +430,7 @@ void Scheduler::WorkerLoop(SpectralEngine* engine) {
     {
       std::lock_guard<std::mutex> lock(mu_);
       --running_;
+      CountsChangedLocked();
       if (auto c = clients_.find(job->client); c != clients_.end()) {
         c->second.used += std::chrono::duration<double>(Clock::now() - job->slice_start).count();
         c->second.running.erase(job.get());
@@ -488,6 +448,8 @@ void Scheduler::WorkerLoop(SpectralEngine* engine) {
           job->status = stopping_ ? Status::Unavailable("the server is shutting down")
                                   : Status::Cancelled("every waiter left");
           metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
+          spdlog::info("optimize cancelled {} as it paused: {}", job->name,
+                       stopping_ ? "shutdown" : "no waiters left");
         }
         FinishLocked(job, &callbacks);
       }
@@ -498,54 +460,51 @@ void Scheduler::WorkerLoop(SpectralEngine* engine) {
 
 Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine,
                                         bool engine_holds_k) {
-  const storage::SetKey& key = job->key;
-  if (!job->run) {
-    // Another server process (or an earlier run) may have stored it by now.
-    if (auto stored = cache_->Get(key); stored.ok()) {
-      auto entry = std::make_shared<const CanonicalEntry>(std::move(stored).value());
-      lru_.Put(job->name, entry);
-      metrics_->cache_hits_db.fetch_add(1, std::memory_order_relaxed);
-      if (evictor_) evictor_->Touch(job->name, key);
-      std::lock_guard<std::mutex> lock(mu_);
-      job->entry = std::move(entry);
-      job->from_cache = true;
-      return SliceEnd::kDone;
-    }
-    if (options_.fill) return FillSlice(job);
-    if (const Construction c = ConstructionOfProfile(key.profile); c != Construction::kOptimized) {
-      return ConstructedSlice(job, c);
-    }
-    if (job->chain.empty()) PlanLineage(job.get());
-    const storage::SetKey& target = job->chain[job->chain_next];
-    OptimizationProblem problem;
-    problem.n = target.n;
-    problem.directions = {Phi1Degrees(target.dirs)};
-    if (target.dirs.count == 2) problem.directions.push_back(Phi2Degrees(target.dirs));
-    problem.seed = RealizationSeed(options_.seed, target.realization);
-    OptimizerOptions options = options_.optimizer;
-    if (job->warm_start) {
-      problem.start = std::move(*job->warm_start);
-      job->warm_start.reset();
-      options = WarmStartOptions(options_.optimizer, target.n, target.dirs.count);
-    }
-    auto run = OptimizerRun::Create(problem, options);
-    if (!run.ok()) {
-      metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
-      spdlog::error("optimize failed {}: {}", job->name, run.status().message());
-      return Finish(job, Status::Internal("optimization failed: " + run.status().message()), nullptr);
-    }
-    {
-      std::lock_guard<std::mutex> lock(mu_);
-      job->run = std::move(run).value();
-    }
-    metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-    spdlog::info("optimize start {} engine={} max_iterations={}{}", KeyString(target), engine->name(),
-                 EffectiveMaxIterations(options, target.n, target.dirs.count),
-                 problem.start ? " (warm: from its parent)" : "");
-  } else {
+  if (job->run) {
     spdlog::debug("optimize resume {} at iteration {}", job->name, job->run->iteration());
+    return OptimizeSlice(job, engine, engine_holds_k);
   }
+  // Another server process (or an earlier run) may have stored it by now.
+  if (auto stored = producer_->FromCache(job->name, job->key); stored.ok()) {
+    std::lock_guard<std::mutex> lock(mu_);
+    job->entry = std::move(stored).value();
+    job->from_cache = true;
+    return SliceEnd::kDone;
+  }
+  if (options_.fill) {
+    auto filled = producer_->Fill(job->name, job->key);
+    return Finish(job, filled.status(), filled.ok() ? std::move(filled).value() : nullptr);
+  }
+  if (!ConstructionOfProfile(job->key.profile).optimized()) {
+    // Built in one slice (not paused, not stopped: seconds at most).
+    double seconds = 0.0;
+    auto built = producer_->Construct(job->name, job->key, &seconds);
+    job->run_seconds += seconds;
+    return Finish(job, built.status(), built.ok() ? std::move(built).value() : nullptr);
+  }
+  if (job->chain.empty()) {
+    LineagePlan plan = producer_->PlanLineage(job->name, job->key);
+    std::lock_guard<std::mutex> lock(mu_);
+    job->chain = std::move(plan.chain);
+    job->chain_next = 0;
+    job->warm_start = std::move(plan.warm_start);
+    job->chain_iterations_done = 0;
+    job->chain_iterations_total = plan.iterations_total;
+  }
+  const storage::SetKey& target = job->chain[job->chain_next];
+  std::optional<PointSet> start = std::move(job->warm_start);
+  job->warm_start.reset();
+  auto run = producer_->StartOptimization(job->name, target, std::move(start), engine->name());
+  if (!run.ok()) return Finish(job, run.status(), nullptr);
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    job->run = std::move(run).value();
+  }
+  return OptimizeSlice(job, engine, engine_holds_k);
+}
 
+Scheduler::SliceEnd Scheduler::OptimizeSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine,
+                                             bool engine_holds_k) {
   const auto t0 = Clock::now();
   const OptimizerRun::Outcome outcome =
       job->run->Resume(*engine, engine_holds_k, [&](const ProgressInfo& p) {
@@ -604,7 +563,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     spdlog::info("optimize done {} loss={:.6g} spectrum={:.6g} sw={:.6g} iterations={} {:.2f} s",
                  target_name, record.loss.total, record.loss.spectrum, record.loss.sw,
                  record.iterations, seconds);
-    entry = Complete(target_name, std::move(record));
+    entry = producer_->Complete(target_name, std::move(record));
     if (job->chain_next + 1 < job->chain.size()) {
       // An ancestor: stored, and the start of the next key down the lineage.
       const storage::SetKey& child = job->chain[job->chain_next + 1];
@@ -621,178 +580,12 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
   return Finish(job, status, std::move(entry));
 }
 
-void Scheduler::PlanLineage(Job* job) {
-  std::vector<storage::SetKey> chain = {job->key};
-  std::optional<PointSet> start;
-  // Up to a root (optimized from Owen-Sobol) or a stored ancestor.
-  while (const auto parent_key = LineageParentKey(chain.back())) {
-    if (auto points = HeldSet(*parent_key)) {
-      start = Align(*points, WarmParent(chain.back().dirs)->ops);
-      break;
-    }
-    chain.push_back(*parent_key);
-  }
-  std::reverse(chain.begin(), chain.end());
-  int total = 0;
-  for (size_t i = 0; i < chain.size(); ++i) {
-    const bool warm = i > 0 || start.has_value();
-    const OptimizerOptions o = warm ? WarmStartOptions(options_.optimizer, chain[i].n, chain[i].dirs.count)
-                                    : options_.optimizer;
-    total += EffectiveMaxIterations(o, chain[i].n, chain[i].dirs.count);
-  }
-  if (chain.size() > 1) {
-    spdlog::info("lineage {}: {} key(s) to optimize first, from {}", job->name, chain.size() - 1,
-                 start ? "a stored parent" : "a root");
-  }
-  std::lock_guard<std::mutex> lock(mu_);
-  job->chain = std::move(chain);
-  job->chain_next = 0;
-  job->warm_start = std::move(start);
-  job->chain_iterations_done = 0;
-  job->chain_iterations_total = total;
-}
-
-std::optional<storage::SetKey> Scheduler::LineageParentKey(const storage::SetKey& key) const {
-  if (ConstructionOfProfile(key.profile) != Construction::kOptimized ||
-      !UsesKeyLineage(options_.optimizer, key.n)) {
-    return std::nullopt;
-  }
-  const auto parent = WarmParent(key.dirs);
-  if (!parent) return std::nullopt;
-  storage::SetKey parent_key = key;
-  parent_key.dirs = parent->parent;
-  return parent_key;
-}
-
-std::optional<PointSet> Scheduler::HeldSet(const storage::SetKey& key) {
-  const std::string name = KeyString(key);
-  if (auto hit = lru_.Get(name)) return hit->record().points;
-  if (auto stored = cache_->Get(key); stored.ok()) return std::move(stored->points);
-  return std::nullopt;
-}
-
-std::shared_ptr<const CanonicalEntry> Scheduler::Complete(const std::string& name,
-                                                          storage::SetRecord record) {
-  record.created_unix = static_cast<int64_t>(std::time(nullptr));
-  const bool stored = Store(record, name);
-  metrics_->optimizations_completed.fetch_add(1, std::memory_order_relaxed);
-  metrics_->RecordOptimization(record.optimize_seconds);
-  auto entry = std::make_shared<const CanonicalEntry>(std::move(record), stored);
-  lru_.Put(name, entry);
-  return entry;
-}
-
 Scheduler::SliceEnd Scheduler::Finish(const std::shared_ptr<Job>& job, const Status& status,
                                       std::shared_ptr<const CanonicalEntry> entry) {
   std::lock_guard<std::mutex> lock(mu_);
   job->status = status;
   job->entry = std::move(entry);
   return SliceEnd::kDone;
-}
-
-bool Scheduler::Store(const storage::SetRecord& record, const std::string& name) {
-  if (options_.read_only) {
-    metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
-    return false;
-  }
-  if (evictor_) {
-    // The key is still in inflight_ (pinned) while it is written.
-    if (Status room = evictor_->MakeRoom(record.key, evictor_->EstimateBytes(record.key.n)); !room.ok()) {
-      metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
-      spdlog::warn("cache write {}: {} (served, not stored)", name, room.message());
-      return false;
-    }
-  }
-  if (Status put = cache_->Put(record); !put.ok()) {
-    // The set is still good: serve it, but say loudly that it was not kept.
-    metrics_->sets_not_stored.fetch_add(1, std::memory_order_relaxed);
-    spdlog::error("cache write {}: {} (served, not stored)", name, put.message());
-    if (options_.on_write_error) options_.on_write_error(put);
-    return false;
-  }
-  if (evictor_) evictor_->Touch(name, record.key);
-  return true;
-}
-
-Scheduler::SliceEnd Scheduler::FillSlice(const std::shared_ptr<Job>& job) {
-  const auto t0 = Clock::now();
-  auto record = options_.fill(job->key);
-  Status status;
-  std::shared_ptr<const CanonicalEntry> entry;
-  if (record.ok()) {
-    metrics_->sets_filled.fetch_add(1, std::memory_order_relaxed);
-    spdlog::info("filled {} from the writer in {:.3f} s (kept in memory)", job->name,
-                 std::chrono::duration<double>(Clock::now() - t0).count());
-    entry = std::make_shared<const CanonicalEntry>(std::move(record).value(), false);
-    lru_.Put(job->name, entry);
-  } else {
-    spdlog::warn("fill {} from the writer: {}", job->name, record.status().message());
-    status = record.status();
-  }
-  return Finish(job, status, std::move(entry));
-}
-
-Scheduler::SliceEnd Scheduler::ConstructedSlice(const std::shared_ptr<Job>& job, Construction construction) {
-  const storage::SetKey& key = job->key;
-  const char* name = ConstructionName(construction);
-  // The canonical key's exact angles (30.25 on the quarter-degree grid); the
-  // served set is this one aligned by swap / mirror: for a lattice the
-  // lattice of the swapped / mirrored generator, for a centred net again a
-  // centred net, each integrating the swapped / mirrored edges exactly as
-  // well as the canonical set integrates its own; for a tent-folded lattice
-  // the points aligned are again a folded lattice (the tent commutes with the
-  // swap, and a mirror is a half shift before the fold), chosen for folded
-  // edges that are their own mirror images.
-  std::vector<double> dirs = {Phi1Degrees(key.dirs)};
-  if (key.dirs.count == 2) dirs.push_back(Phi2Degrees(key.dirs));
-  metrics_->optimizations_started.fetch_add(1, std::memory_order_relaxed);
-  spdlog::info("{} start {}", name, job->name);
-  const auto t0 = Clock::now();
-  storage::SetRecord record;
-  record.key = key;
-  record.engine = name;
-  std::string detail;
-  // The seed is the realization number itself (server/construction.h).
-  Status made;
-  if (construction == Construction::kLattice || construction == Construction::kTentLattice) {
-    const bool folded = construction == Construction::kTentLattice;
-    AlignedLatticeOptions lattice;
-    lattice.folded = folded;
-    lattice.window_deg = folded ? kTentLatticeWindowDeg : kLatticeWindowDeg;
-    lattice.threads = std::max(1, options_.threads_per_worker);
-    lattice.cache = &lattice_terms_;
-    auto choice = ChooseAlignedLatticeGenerator(key.n, dirs, lattice);
-    made = choice.status();
-    if (choice.ok()) {
-      record.points = LatticePoints(key.n, choice->generator, key.realization, folded);
-      detail = fmt::format("generator={} score={:.6g} candidates={}", choice->generator, choice->score,
-                           choice->candidates);
-    }
-  } else {
-    AlignedNetOptions net;
-    net.window_deg = kNetWindowDeg;
-    auto result = AlignedNet(key.n, dirs, key.realization, net);
-    made = result.status();
-    if (result.ok()) {
-      record.points = std::move(result->points);
-      record.iterations = result->sweeps;
-      detail = fmt::format("objective {:.4g} -> {:.4g} flips={} sweeps={}", result->start_objective,
-                           result->objective, result->flips, result->sweeps);
-    }
-  }
-  Status status;
-  std::shared_ptr<const CanonicalEntry> entry;
-  if (!made.ok()) {
-    metrics_->optimizations_failed.fetch_add(1, std::memory_order_relaxed);
-    spdlog::error("{} failed {}: {}", name, job->name, made.message());
-    status = Status::Internal(std::string(name) + " construction failed: " + made.message());
-  } else {
-    record.optimize_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    job->run_seconds += record.optimize_seconds;
-    spdlog::info("{} done {} {} {:.3f} s", name, job->name, detail, record.optimize_seconds);
-    entry = Complete(job->name, std::move(record));
-  }
-  return Finish(job, status, std::move(entry));
 }
 
 bool Scheduler::InFlight(const std::string& key_name) const {
@@ -843,6 +636,26 @@ uint32_t Scheduler::running() const {
 uint32_t Scheduler::paused() const {
   std::lock_guard<std::mutex> lock(mu_);
   return paused_;
+}
+
+void Scheduler::CountsChangedLocked() {
+  if (counts_waiters_.empty()) return;
+  const auto queued = static_cast<uint32_t>(waiting_[0] + waiting_[1]);
+  for (CountsWaiter* w : counts_waiters_) {
+    if (!w->met && (*w->until)(queued, running_, paused_)) w->met = true;
+  }
+  counts_cv_.notify_all();
+}
+
+bool Scheduler::WaitForCounts(const std::function<bool(uint32_t, uint32_t, uint32_t)>& until,
+                              std::chrono::milliseconds timeout) const {
+  std::unique_lock<std::mutex> lock(mu_);
+  CountsWaiter w{&until};
+  w.met = until(static_cast<uint32_t>(waiting_[0] + waiting_[1]), running_, paused_);
+  counts_waiters_.push_back(&w);
+  counts_cv_.wait_for(lock, timeout, [&] { return w.met; });
+  counts_waiters_.erase(std::find(counts_waiters_.begin(), counts_waiters_.end(), &w));
+  return w.met;
 }
 
 }  // namespace alignset::server

@@ -14,14 +14,12 @@
 #include <tuple>
 #include <vector>
 
-#include "core/optimize/lattice_term_cache.h"
+#include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/spectral_engine.h"
-#include "server/cache_evictor.h"
 #include "server/canonical_entry.h"
-#include "server/construction.h"
 #include "server/metrics.h"
-#include "server/set_lru.h"
+#include "server/set_producer.h"
 #include "storage/set_cache.h"
 
 namespace alignset::server {
@@ -118,16 +116,18 @@ class Ticket {
 // a request that would add a job past either gets RESOURCE_EXHAUSTED
 // (joining an existing job always works).
 //
-// Every finished set is stored in SQLite in one transaction (SetCache::Put)
-// before any waiter sees it, then kept decoded in an in-memory LRU.
+// Where a set comes from and where it goes is the SetProducer's
+// (server/set_producer.h): every finished set is stored in SQLite in one
+// transaction (SetCache::Put) before any waiter sees it, then kept decoded in
+// an in-memory LRU.
 //
-// A key with the lattice profile (server/construction.h) is a job like any
-// other (single flight, queue, priority, bounds, metrics: it counts as an
-// optimization), but its one slice computes an aligned rank-1 lattice
-// instead of running the optimizer: it never pauses, and once running it
-// finishes and is stored even when its waiters have left. The lattice
-// searches share their per-direction terms (lattice_terms_bytes), so a key's
-// realizations and the keys of a space cost what one batch would.
+// A key with a construction's profile (core/optimize/construction.h) is a
+// job like any other (single flight, queue, priority, bounds, metrics: it
+// counts as an optimization), but its one slice builds the set instead of
+// running the optimizer: it never pauses, and once running it finishes and
+// is stored even when its waiters have left. The lattice searches share
+// their per-direction terms (lattice_terms_bytes), so a key's realizations
+// and the keys of a space cost what one batch would.
 class Scheduler {
  public:
   struct Options {
@@ -168,11 +168,15 @@ class Scheduler {
 
   // The key of N points with canonical directions `dirs` under this server's
   // optimization profile; `realization` picks one of the key's independent
-  // sets (optimized from RealizationSeed(seed, realization)). A lattice key
-  // has kLatticeProfile instead (server/construction.h).
+  // sets (optimized from RealizationSeed(seed, realization)). A constructed
+  // key has its construction's profile instead (core/optimize/construction.h).
   storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs, uint32_t realization = 0,
-                         Construction construction = Construction::kOptimized) const;
-  std::string ProfileFor(uint32_t n, Construction construction = Construction::kOptimized) const;
+                         ConstructionKind construction = ConstructionKind::kOptimized) const {
+    return producer_->KeyFor(n, dirs, realization, construction);
+  }
+  std::string ProfileFor(uint32_t n, ConstructionKind construction = ConstructionKind::kOptimized) const {
+    return producer_->ProfileFor(n, construction);
+  }
   const Options& options() const { return options_; }
 
   // A hit (memory, then SQLite), else a share in the key's job, queued if new
@@ -180,15 +184,17 @@ class Scheduler {
   // treated as a miss.
   StatusOr<std::unique_ptr<Ticket>> Acquire(const storage::SetKey& key, Priority priority,
                                             const std::string& client = "");
-  // Whether the set is stored (no decode, no checksum): precompute's skip test.
-  StatusOr<bool> IsStored(const storage::SetKey& key);
+  // Whether the set is stored (checksum verified): precompute's skip test.
+  StatusOr<bool> IsStored(const storage::SetKey& key) { return producer_->IsStored(key); }
   // The key whose set a job for `key` continues from (its parent in the key
   // lineage, core/align/key_lineage.h), or nullopt where the job starts
   // from Owen-Sobol: a root, a lattice or net key, N below --warm-min-n or
   // a warm budget of 0. A batch holds a key back while this one is still
   // running in it, so that two workers never optimize one ancestor twice,
   // and starts the keys without one (the roots) of each N first.
-  std::optional<storage::SetKey> LineageParentKey(const storage::SetKey& key) const;
+  std::optional<storage::SetKey> LineageParentKey(const storage::SetKey& key) const {
+    return producer_->LineageParentKey(key);
+  }
 
   // Stops taking work: queued jobs end with UNAVAILABLE, running ones are
   // asked to stop at their next progress callback. A write in progress
@@ -202,6 +208,14 @@ class Scheduler {
   uint32_t queue_length() const;
   uint32_t running() const;
   uint32_t paused() const;
+  // Calls `until(queue_length, running, paused)` now and at every change of
+  // the three, in the thread that changes them and under the scheduler's
+  // lock (so it sees every value they pass through, and must be quick and
+  // call nothing of the scheduler), until it returns true or `timeout`
+  // passes; returns whether it did. For callers that wait for the queue to
+  // reach a state (a drain, a test) without polling.
+  bool WaitForCounts(const std::function<bool(uint32_t queued, uint32_t running, uint32_t paused)>& until,
+                     std::chrono::milliseconds timeout) const;
 
  private:
   friend class Ticket;
@@ -216,27 +230,12 @@ class Scheduler {
   using Callbacks = std::vector<std::function<void()>>;
   enum class SliceEnd { kDone, kPaused };
 
-  Scheduler(const Options& options, storage::SetCache* cache, Metrics* metrics);
+  Scheduler(const Options& options, Metrics* metrics);
   void WorkerLoop(SpectralEngine* engine);
   SliceEnd RunSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine, bool engine_holds_k);
-  // A replica's job (--fill-from): the set from the writer, kept in memory.
-  SliceEnd FillSlice(const std::shared_ptr<Job>& job);
-  // A lattice key's job: the generator search and the points, in one slice
-  // (not paused, not stopped: seconds at most), stored like an optimized set.
-  // A lattice or net key: constructed in one go (not paused, not cancelled).
-  SliceEnd ConstructedSlice(const std::shared_ptr<Job>& job, Construction construction);
-  // Sets job->chain: the job's key and the ancestors that must be optimized
-  // before it (none in memory or in the cache), root-most first, and the
-  // warm start of the first when its parent is held.
-  void PlanLineage(Job* job);
-  // The set of a key from the memory cache or SQLite, if either has it.
-  std::optional<PointSet> HeldSet(const storage::SetKey& key);
-  // Writes a finished set (a writer), making room first when the file is
-  // bounded; false when it was not stored.
-  bool Store(const storage::SetRecord& record, const std::string& name);
-  // A finished set: stamped, stored (when it can be), counted, and put in
-  // the memory cache; the entry every waiter of the key gets.
-  std::shared_ptr<const CanonicalEntry> Complete(const std::string& name, storage::SetRecord record);
+  // An optimized key's slice: its lineage planned on the first, then the
+  // optimizer resumed until it pauses, is cancelled or finishes a key.
+  SliceEnd OptimizeSlice(const std::shared_ptr<Job>& job, SpectralEngine* engine, bool engine_holds_k);
   // Hands the job's outcome to its waiters.
   SliceEnd Finish(const std::shared_ptr<Job>& job, const Status& status,
                   std::shared_ptr<const CanonicalEntry> entry);
@@ -259,11 +258,8 @@ class Scheduler {
   }
 
   const Options options_;
-  storage::SetCache* cache_;
   Metrics* metrics_;
-  SetLru lru_;
-  LatticeTermCache lattice_terms_;
-  std::unique_ptr<CacheEvictor> evictor_;  // with max_cache_bytes only
+  std::unique_ptr<SetProducer> producer_;
   std::vector<std::unique_ptr<SpectralEngine>> engines_;
   std::vector<std::thread> workers_;
 
@@ -276,8 +272,15 @@ class Scheduler {
   size_t waiting_[2] = {0, 0};  // waiting jobs per priority, all clients
   std::map<std::string, ClientQueue> clients_;
   std::map<std::string, std::shared_ptr<Job>> inflight_;
-  mutable std::mutex profile_mu_;
-  mutable std::map<uint32_t, std::string> profiles_;
+  // WaitForCounts' callers: each predicate is asked at every change of
+  // running_, paused_ or waiting_ (CountsChangedLocked).
+  struct CountsWaiter {
+    const std::function<bool(uint32_t, uint32_t, uint32_t)>* until;
+    bool met = false;
+  };
+  mutable std::vector<CountsWaiter*> counts_waiters_;
+  mutable std::condition_variable counts_cv_;
+  void CountsChangedLocked();
 };
 
 }  // namespace alignset::server

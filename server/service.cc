@@ -118,8 +118,8 @@ StatusOr<storage::SetKey> AlignSetService::KeyOf(const v1::AlignedSetRequest& re
   if (Status r = ValidateRealization(req.realization()); !r.ok()) return r;
   auto construction = ParseConstruction(req.construction());
   if (!construction.ok()) return construction.status();
-  if (Status s = ValidateConstructionSize(*construction, req.n()); !s.ok()) return s;
-  return scheduler_->KeyFor(req.n(), canon.key, req.realization(), *construction);
+  if (Status s = (*construction)->ValidateSize(req.n()); !s.ok()) return s;
+  return scheduler_->KeyFor(req.n(), canon.key, req.realization(), (*construction)->kind);
 }
 
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
@@ -144,20 +144,18 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   md->set_iterations(rec.iterations);
   md->set_engine(rec.engine);
   md->set_not_stored(!entry.stored());
-  const Construction construction = ConstructionOfProfile(key.profile);
-  md->set_construction(ConstructionName(construction));
-  if (construction != Construction::kOptimized) {
+  const Construction& construction = ConstructionOfProfile(key.profile);
+  md->set_construction(std::string(construction.name));
+  if (!construction.optimized()) {
     // No optimization parameters: a lattice's or a net's seed is its
     // realization.
     v1::OptimizationParameters* p = md->mutable_parameters();
     p->set_seed(key.realization);
-    p->set_algorithm_version(construction == Construction::kLattice       ? kLatticeAlgorithmVersion
-                             : construction == Construction::kTentLattice ? kTentLatticeAlgorithmVersion
-                                                                          : kNetAlgorithmVersion);
-    if (construction == Construction::kLattice || construction == Construction::kTentLattice) {
+    p->set_algorithm_version(construction.version);
+    if (construction.lattice()) {
       // The served set's generator: the canonical one carried by the same
       // swap / mirror as the points (MapLatticeGenerator).
-      const auto g = entry.LatticeGenerator(key.realization, construction == Construction::kTentLattice);
+      const auto g = entry.LatticeGenerator(key.realization, construction.folded());
       if (g) {
         md->set_lattice_generator(
             MapLatticeGenerator(key.n, *g, canon.ops.swap, canon.ops.invert, canon.ops.invert_y));

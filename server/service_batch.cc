@@ -71,7 +71,7 @@ grpc::Status AlignSetService::GetAlignedSets(grpc::ServerContext* ctx,
     // Checked once for the call rather than refused 46 times, item by item.
     if (auto c = ParseConstruction(req->space_construction()); !c.ok()) {
       return Invalid(c.status(), "GetAlignedSets");
-    } else if (Status s = ValidateConstructionSize(*c, req->space_n()); !s.ok()) {
+    } else if (Status s = (*c)->ValidateSize(req->space_n()); !s.ok()) {
       return Invalid(s, "GetAlignedSets");
     }
     for (size_t i = 0; i < CanonicalKeyCount(1); ++i) {

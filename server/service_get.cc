@@ -122,6 +122,7 @@ grpc::ServerUnaryReactor* AlignSetService::GetAlignedSet(grpc::CallbackServerCon
   }
   auto call = std::make_shared<GetCall>(this, ctx, resp, std::move(canon).value(), key,
                                         std::move(ticket).value(), t0);
+  spdlog::debug("GetAlignedSet {} waits for its optimization", KeyString(key));
   return call->Start();
 }
 }  // namespace alignset::server

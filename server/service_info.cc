@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "server/direction_request.h"
+#include "server/log_text.h"
 #include "server/samples.h"
 #include "server/service_internal.h"
 #include "server/validation.h"
@@ -33,6 +34,7 @@ grpc::Status AlignSetService::GetSamples(grpc::ServerContext* ctx, const v1::Sam
     }
     shear = req->shear_deg();
   }
+  spdlog::debug("GetSamples {} N={} seed={}", Quoted(req->sampler()), req->n(), req->seed());
   auto points = MakeBaselineSamples(req->sampler(), req->n(), req->seed(), shear);
   if (!points.ok()) {
     if (points.status().code() == Status::Code::kInvalidArgument) return Invalid(points.status(), "GetSamples");

@@ -106,7 +106,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   auto construction = ParseConstruction(req->construction());
   if (!construction.ok()) return Invalid(construction.status(), "Precompute");
   for (uint32_t n : req->n()) {
-    if (Status s = ValidateConstructionSize(*construction, n); !s.ok()) return Invalid(s, "Precompute");
+    if (Status s = (*construction)->ValidateSize(n); !s.ok()) return Invalid(s, "Precompute");
   }
   const uint64_t realizations = std::max<uint32_t>(1, req->realizations());
   // The items are enumerated as they are reached, not listed up front: a
@@ -121,7 +121,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   const uint64_t space_size = space.size();
   const uint64_t per_n = space_size * realizations;
   const uint64_t all = static_cast<uint64_t>(req->n().size()) * per_n;
-  const bool by_lineage = *construction == Construction::kOptimized;
+  const bool by_lineage = (*construction)->optimized();
   std::vector<uint64_t> order(space_size);
   std::iota(order.begin(), order.end(), uint64_t{0});
   uint64_t first = req->shard_index(), step = shards;
@@ -143,10 +143,10 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
     const uint64_t c = first + j * step;
     return scheduler_->KeyFor(n_of(j),
                               space[order[(c / realizations) % space_size]],
-                              static_cast<uint32_t>(c % realizations), *construction);
+                              static_cast<uint32_t>(c % realizations), (*construction)->kind);
   };
   const std::string client = ctx->peer();
-  spdlog::info("precompute: {} {} items (shard {}/{}) from {}", total, ConstructionName(*construction),
+  spdlog::info("precompute: {} {} items (shard {}/{}) from {}", total, (*construction)->name,
                req->shard_index(), shards, Quoted(client));
 
   const auto t0 = Clock::now();

@@ -45,7 +45,7 @@ StatusOr<Canonicalization> ValidateAlignedSetRequest(uint32_t n,
     // keys). Sets for 3 to 8 arbitrary directions are not cached: they have
     // no small canonical space to precompute (three whole-degree directions
     // alone make about 2.5e5 orbits under the same group), so they are
-    // refused here and made locally (README, "Any number of directions").
+    // refused here and made locally (docs/results.md, "Any number of directions").
     std::string hint;
     if (directions_deg.size() > 2) {
       hint = "; sets for up to 8 directions are made locally: alignset optimize --dir A --dir B "

@@ -36,7 +36,7 @@ struct AlignOps {
 // served by the nearest grid angle, so at most 1/8° off instead of 1/2°
 // (at N = 4096 a 1/2° misalignment costs about 18% of the variance on the
 // edge). The two-direction space stays on whole degrees: on quarter degrees
-// it would have about 16 x 4141 = 66k keys (README, "Choices").
+// it would have about 16 x 4141 = 66k keys (docs/method.md, "Canonical keys and alignment").
 enum class AngleGrid { kWholeDegree = 1, kQuarterDegree = 4 };
 
 // Steps per degree of a grid (1 or 4).

@@ -47,7 +47,7 @@ struct DirectionOptions {
   int starts = 3;
   bool refine = true;
   // The alternative to a window: leave out the frequencies within this many
-  // degrees of 0° and 90° (0: keep them). Measured worse (README).
+  // degrees of 0° and 90° (0: keep them). Measured worse (docs/results.md, "Direction estimation").
   double axis_exclusion_deg = 0.0;
   // < 0: automatic, 1.7 for a grid and 2 for scattered samples.
   double min_contrast = -1.0;

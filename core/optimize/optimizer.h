@@ -25,7 +25,8 @@ inline constexpr uint32_t kMaxPoints = 1u << 20;
 // What to make: N points whose spectrum is dark along 0°, 90° and the 1 to
 // kMaxArbitraryDirections (8) arbitrary directions (degrees, spectral
 // convention: the edge normal). One or two are the service's canonical
-// spaces; more are made locally only (README, "Any number of directions").
+// spaces; more are made locally only (docs/results.md, "Any number of
+// directions").
 struct OptimizationProblem {
   uint32_t n = 0;
   std::vector<double> directions;
@@ -54,18 +55,15 @@ struct OptimizerOptions {
   // Total loss L = L_Spec + c * L_SW with c = sw_weight; 0 selects c = 4N.
   //
   // The supplement's c = 10 belongs to its own normalization of L_SW, which
-  // the seeds do not give. With L_SW as a mean over points (method.md), the
-  // SW gradient on a point shrinks like 1/N against the spectral one, and
-  // c = 10 leaves the low frequencies under-stratified from N ~ 1000 on
-  // (c = N: 1.04x / 1.35x / 1.57x lower variance than c = 10 at N = 256 /
-  // 1024 / 4096). Between c = N and c = 4N the fully converged sets are
-  // equally good (aligned step edge, θ = 30°, N = 4096, 8 seeds: 1.465e-7
-  // vs 1.475e-7), but c = 4N gets there in about a third of the iterations,
-  // because the variance is decided by the lowest frequencies along θ, which
-  // the SW term stratifies directly (README, "Choices"). sw_weight = 10
-  // reproduces the literal reading.
+  // the seeds do not give. With L_SW as a mean over points the SW gradient on
+  // a point shrinks like 1/N against the spectral one, so c must grow with N
+  // or the low frequencies stay under-stratified; c = 4N reaches c = N's
+  // converged quality sooner, because the variance is decided by the lowest
+  // frequencies along θ, which the SW term stratifies directly (the figures:
+  // docs/method.md, "SW weight c = 4N"). sw_weight = 10 reproduces the
+  // literal reading.
   double sw_weight = 0.0;
-  // The low-frequency levers (README, "Choices: the low-frequency floor").
+  // The low-frequency levers (docs/method.md, "The low-frequency floor").
   // The supplement's flat mean over K leaves every frequency of K at about
   // the loss value, so the handful of lowest frequencies, which decide the
   // variance of smooth integrands and most of an edge's, sit at ~1e-3 where
@@ -128,48 +126,34 @@ struct OptimizerOptions {
   // of the cold budget. The service starts every key that is not a root of
   // the key lineage (core/align/key_lineage.h) from its parent's set; 0
   // optimizes every key from Owen-Sobol. 0.13: 130 iterations for one
-  // direction and 195 for two at N = 4096 (docs/results.md, "Filling the
-  // space", for the quality against the cold sets).
+  // direction and 195 for two at N = 4096. The warm options below were each
+  // measured against the cold sets of the same seeds; the figures are in
+  // docs/method.md, "Filling the space: the key lineage", and
+  // docs/results.md, "Filling the space".
   double warm_budget_fraction = 0.13;
   // The share of a warm descent run with `warmup_weighting` before the
-  // main weighting, as in a cold one. Without it the main weighting alone
-  // pulled the aligned edge and the smoothed step 2-5% above the cold
-  // sets' after a few steps; with 0.5 they match within 1-2% (N = 4096,
-  // 12 seeds, chains of 1 and 3 steps).
+  // main weighting, as in a cold one: the main weighting alone lets the
+  // aligned edge and the smoothed step drift from the cold sets' along a
+  // chain.
   double warm_warmup_fraction = 0.5;
   // The first step of a two-direction warm descent, as a multiple of the
-  // default (learning_rate_scale). With the cold descent's first step, one
-  // warm step cost the centred Gaussian 1.33x and the unshifted random
-  // Gaussians 1.87x against the cold set (N = 4096, (12, 80) from (11, 80),
-  // 36 seeds); half that step cost more (2.70x), twice it brought both to
-  // the cold sets' (1.00x, 0.90x, 24 seeds) with every edge within 5%, and
-  // three times it lost again (2.64x): a narrow range, measured at N = 4096
-  // only, whose cause was not isolated; docs/results.md,
-  // "Filling the space". One-direction warm descents keep the cold step
-  // (their chains met the 5% there). Only up to
-  // warm_pair_learning_rate_max_points: above 4096 it was only screened for
-  // two directions (N = 65536, one seed, one evaluation: members moved 5-20%
-  // both ways, bench/results/lineage_quality_levers.md), and at 65536 it made
-  // one-direction warm sets worse (the aligned edge 1.21x,
-  // bench/results/lineage_warmup_large_n.md).
+  // default (learning_rate_scale): the cold descent's first step cost the
+  // Gaussians against the cold set, and both half and three times this one
+  // cost more (a narrow range, measured at N = 4096 only, whose cause was
+  // not isolated). One-direction warm descents keep the cold step. Only up
+  // to warm_pair_learning_rate_max_points: above, it was screened only, and
+  // at 65536 it made one-direction warm sets worse.
   double warm_pair_learning_rate_scale = 2.0;
   uint32_t warm_pair_learning_rate_max_points = 4096;
   // The largest N whose warm descents run that warm-up share; above it the
-  // whole warm budget runs the main weighting (algorithm version 8). At
-  // N = 65536 the warm-up half let the lowest frequencies drift (the power
-  // at |v| <= 3.5 about twice the cold sets' after the projection) and the
-  // main iterations left did not bring them back: the centred Gaussian 2.2x
-  // the cold sets' (4 seeds, 1.2x to 12x by seed); without it 0.20x (6
-  // seeds), and the axis edges 0.70x. At 16384 and 32768 the half is needed:
-  // without it the aligned edge 1.10x (6 seeds, each 1.04-1.15x) and 1.09x
-  // (4 seeds, each 1.07-1.13x). bench/results/lineage_warmup_large_n.md.
+  // whole warm budget runs the main weighting (algorithm version 8): at
+  // 65536 the warm-up half lets the lowest frequencies drift and the main
+  // iterations left do not bring them back, while at 16384 and 32768 the
+  // aligned edge needs the half.
   uint32_t warm_warmup_max_points = 32768;
   // The smallest N whose keys use the lineage. Below it every key is
-  // optimized from Owen-Sobol: a cold two-direction set at N = 1024 takes
-  // 0.8 s (the 4141 keys in under an hour without the lineage), and there
-  // the warm sets were further from the cold ones (N = 1024: the aligned
-  // edge 1.06x, the centred Gaussian 3x, still 300x below Owen-Sobol's;
-  // N = 256: the aligned edge 1.15x; docs/results.md).
+  // optimized from Owen-Sobol: a cold fill is cheap there, and the warm sets
+  // were further from the cold ones.
   uint32_t warm_min_points = 4096;
 };
 
@@ -192,12 +176,11 @@ double EffectiveSwWeight(const OptimizerOptions& options, uint32_t n);
 // The iteration budget alignset uses for N points and one or two arbitrary
 // directions: 1000 up to N = 4096, then growing like sqrt(N) (2000 at 16384,
 // 4000 at 65536), and half as much again for two arbitrary directions.
-// Measured with the default schedule, that many iterations bring the aligned
-// step-edge variance within a few percent of a fully converged set (README,
-// "Time to quality"); larger sets need more because their lowest
-// frequencies span more point spacings, and two-direction sets (five strips)
-// were still 8-13% above converged after 1000 iterations at N = 4096 and
-// within 3% after 1500 (4 seeds, bench/results/two_directions_budget.txt).
+// That many iterations bring the aligned step-edge variance within a few
+// percent of a fully converged set; larger sets need more because their
+// lowest frequencies span more point spacings, and two-direction sets have
+// five strips to darken (docs/method.md, "Schedule"; docs/results.md,
+// "Engines").
 int DefaultIterationBudget(uint32_t n, int arbitrary_directions = 1);
 
 // The options of a descent that continues from a neighbouring key's set:
@@ -215,18 +198,12 @@ int EffectiveMaxIterations(const OptimizerOptions& options, uint32_t n,
                            int arbitrary_directions = 1);
 
 // The engine accuracy alignset's descent asks for: 1e-7 up to N = 4096, the
-// fast engine's full 1e-11 above. A descent needs less than an analysis: at
-// N = 1024 and 4096 (θ = 30° and 82°, 2 seeds) the runs at 1e-8 (kernel
-// width 9 instead of 12) follow the same path as at 1e-11, the same final
-// losses to four digits and the same reverts (algorithm version 4); at 1e-7
-// (width 8, two full AVX2 vectors per kernel row instead of three partly
-// empty ones) the whole integrand family at N = 256...4096, 5 angles, 4
-// seeds is version 4's within seed noise (every member's mean ratio within
-// 0.4%, single cells -4%...+8% at 4096 and identical below), and a run at
-// N = 4096 takes about 20% less time than at 1e-8. Above 4096, F's absolute
-// error (~ tolerance N) nears the lowest frequencies' own size, and at 16384
-// and 65536 the runs at 1e-8 already took other paths (the Gaussian 2.6x and
-// 6.5x worse, one seed; README, "Choices: the low-frequency floor").
+// fast engine's full 1e-11 above. A descent needs less than an analysis:
+// up to 4096 the looser descent ends where the full one does (within seed
+// noise on the whole integrand family) and is faster (width 8 fills two
+// AVX2 vectors per kernel row). Above 4096, F's absolute error (~ tolerance
+// N) nears the lowest frequencies' own size, and looser descents took other
+// paths (the figures: docs/method.md, "The low-frequency floor").
 double DefaultEngineTolerance(uint32_t n);
 
 // The tolerance `options` selects for N points.

@@ -14,7 +14,7 @@ namespace alignset {
 // |v|^-2 along an edge's normal and faster for smooth functions. Measured
 // alternatives (a separate exponent or scale for the arbitrary strips, an
 // extra boost inside a small radius) did not beat the single exponent
-// (README, "Choices") and were removed.
+// (docs/method.md, "The low-frequency floor") and were removed.
 struct SpectrumWeighting {
   double exponent = 0.0;
   bool flat() const { return exponent == 0.0; }

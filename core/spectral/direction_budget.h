@@ -24,7 +24,7 @@ inline constexpr int kMaxArbitraryDirections = 8;
 // (4 / D)^1.5: more edge directions mean shorter edges in a polygon of a given
 // size, whose spectral lobes are wider across the edge normal (the supplement,
 // Fig. 3), so a strip must be wider to cover them; the high frequencies along
-// each direction are what gives way (README, "Any number of directions", has
+// each direction are what gives way (docs/results.md, "Any number of directions", has
 // the measurement behind the exponent). The length never drops below the
 // disk radius (a strip inside the disk suppresses nothing new) and the width
 // never below 1. The result is continuous at k = 2.

@@ -42,7 +42,7 @@ FrequencyParams SupplementFrequencyParams(uint32_t n);
 // isotropic low band (disk and triangle integrands, θ + 45° edges: 0.94 ->
 // 0.84 of Owen-Sobol at N = 1024) and a wider strip gives the dark line
 // tolerance to a misestimated direction and darker edges at 0°/90°
-// (README, "Choices: the low-frequency floor"). |K| grows to 1.1-1.9 N.
+// (docs/method.md, "The low-frequency floor"). |K| grows to 1.1-1.9 N.
 inline constexpr double kDefaultWidthScale = 1.5;
 inline constexpr double kDefaultRadiusScale = 1.6;
 FrequencyParams DefaultFrequencyParams(uint32_t n);

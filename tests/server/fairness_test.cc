@@ -32,10 +32,6 @@ class FairnessTest : public testing::SchedulerFixture {
     StartWith(o);
   }
   static void WaitDone(const Ticket& t) { SchedulerFixture::WaitDone(t, 1200); }
-  static void WaitRunning(const Ticket& t) {
-    for (int i = 0; i < 1000 && t.View().state != JobView::State::kRunning; ++i) std::this_thread::sleep_for(5ms);
-    ASSERT_EQ(t.View().state, JobView::State::kRunning);
-  }
 };
 
 TEST_F(FairnessTest, AnotherClientsSmallJobDoesNotWaitBehindAGreedyClientsQueue) {
@@ -45,7 +41,7 @@ TEST_F(FairnessTest, AnotherClientsSmallJobDoesNotWaitBehindAGreedyClientsQueue)
   std::vector<std::unique_ptr<Ticket>> greedy;
   for (int phi = 0; phi < 5; ++phi) greedy.push_back(MustAcquire(Key(256, phi), Priority::kInteractive, "greedy"));
   WaitRunning(*greedy[0]);
-  std::this_thread::sleep_for(50ms);
+  WaitIterations(*greedy[0], 5);  // under way
   // Queued behind four of the greedy client's jobs, the victim is next in
   // line: clients take turns.
   auto victim = MustAcquire(Key(64, 40), Priority::kInteractive, "victim");
@@ -127,14 +123,15 @@ TEST_F(FairnessTest, AtMostMaxPausedStatesAreHeld) {
   for (int client = 0; client < 6; ++client) {
     tickets.push_back(MustAcquire(Key(64, client), Priority::kInteractive, "c" + std::to_string(client)));
   }
+  // Every value the count passes through, for 400 ms of 1 ms slices.
   uint32_t most = 0;
-  for (int i = 0; i < 200; ++i) {
-    most = std::max(most, scheduler_->paused());
-    std::this_thread::sleep_for(2ms);
-  }
+  scheduler_->WaitForCounts([&](uint32_t, uint32_t, uint32_t paused) {
+    most = std::max(most, paused);
+    return false;
+  }, 400ms);
   EXPECT_EQ(most, 2u);  // reached, never passed
   tickets.clear();  // every waiter leaves: queued and paused jobs are dropped
-  for (int i = 0; i < 100 && scheduler_->running() > 0; ++i) std::this_thread::sleep_for(10ms);
+  EXPECT_TRUE(WaitIdle());
   EXPECT_EQ(scheduler_->paused(), 0u);
   EXPECT_EQ(scheduler_->queue_length(), 0u);
   EXPECT_EQ(scheduler_->running(), 0u);

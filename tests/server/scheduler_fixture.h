@@ -51,6 +51,34 @@ class SchedulerFixture : public ::testing::Test {
     }
     ASSERT_TRUE(t.Done());
   }
+  // Waits, on the job's own change events, until it runs (or 10 s pass).
+  static void WaitRunning(const Ticket& t) {
+    using namespace std::chrono_literals;
+    const auto end = std::chrono::steady_clock::now() + 10s;
+    JobView v = t.View();
+    while (v.state != JobView::State::kRunning && std::chrono::steady_clock::now() < end) {
+      v = t.WaitForChange(v.version, 100ms);
+    }
+    ASSERT_EQ(v.state, JobView::State::kRunning);
+  }
+  // Waits, on the job's progress events, until it has run `iterations`
+  // (or 10 s pass); returns what it saw last.
+  static JobView WaitIterations(const Ticket& t, int iterations) {
+    using namespace std::chrono_literals;
+    const auto end = std::chrono::steady_clock::now() + 10s;
+    JobView v = t.View();
+    while (v.progress.iteration < iterations && v.state != JobView::State::kDone &&
+           std::chrono::steady_clock::now() < end) {
+      v = t.WaitForChange(v.version, 100ms);
+    }
+    return v;
+  }
+  // Waits on the scheduler's count changes until nothing runs or waits.
+  bool WaitIdle(std::chrono::milliseconds timeout = std::chrono::seconds(20)) {
+    return scheduler_->WaitForCounts([](uint32_t queued, uint32_t running, uint32_t) {
+      return queued == 0 && running == 0;
+    }, timeout);
+  }
 
   storage::testing::TempDir dir_;
   std::unique_ptr<storage::SetCache> cache_;

@@ -95,11 +95,13 @@ TEST_F(SchedulerTest, LastWaiterLeavingCancelsTheOptimizationAndStoresNothing) {
   EXPECT_EQ(a->View().state, JobView::State::kRunning);
   a.reset();  // one waiter left: the job goes on
   gate_->Open();
-  std::this_thread::sleep_for(50ms);
-  EXPECT_EQ(b->View().state, JobView::State::kRunning);
+  const int at = b->View().progress.iteration;
+  const JobView later = WaitIterations(*b, at + 2);  // iterations run after `a` left
+  EXPECT_GE(later.progress.iteration, at + 2);
+  EXPECT_EQ(later.state, JobView::State::kRunning);
   EXPECT_EQ(metrics_.optimizations_cancelled.load(), 0u);
   b.reset();  // none left: stopped at the next progress callback
-  for (int i = 0; i < 100 && scheduler_->running() > 0; ++i) std::this_thread::sleep_for(20ms);
+  EXPECT_TRUE(WaitIdle());
   EXPECT_EQ(scheduler_->running(), 0u);
   EXPECT_EQ(metrics_.optimizations_cancelled.load(), 1u);
   EXPECT_EQ(metrics_.optimizations_completed.load(), 0u);

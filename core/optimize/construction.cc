@@ -1,0 +1,100 @@
+#include "core/optimize/construction.h"
+
+#include <cstdio>
+
+#include "core/optimize/aligned_lattice.h"
+#include "core/optimize/aligned_net.h"
+
+namespace alignset {
+namespace {
+
+// The profiles are literals, not formatted from name, version and window, so
+// that a glance at this table shows the cache keys every stored set has.
+constexpr Construction kConstructions[] = {
+    {ConstructionKind::kOptimized, "optimized", "optimized set", 0, 0.0, ""},
+    {ConstructionKind::kLattice, "lattice", "rank-1 lattice", 2, 1.0, "lattice-v2-w1"},
+    {ConstructionKind::kTentLattice, "tent-lattice", "tent-folded rank-1 lattice", 1, kTentLatticeWindowDeg,
+     "tent-lattice-v1-w2"},
+    {ConstructionKind::kNet, "net", "(0,m,2)-net", 1, 1.0, "net-v1-w1"},
+};
+
+}  // namespace
+
+std::span<const Construction> Constructions() { return kConstructions; }
+
+const Construction& ConstructionOf(ConstructionKind kind) {
+  for (const Construction& c : kConstructions) {
+    if (c.kind == kind) return c;
+  }
+  return kConstructions[0];
+}
+
+const Construction* FindConstruction(std::string_view name) {
+  if (name.empty()) return &kConstructions[0];
+  for (const Construction& c : kConstructions) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+const Construction& ConstructionOfProfile(std::string_view profile) {
+  for (const Construction& c : kConstructions) {
+    if (!c.optimized() && c.profile == profile) return c;
+  }
+  return kConstructions[0];
+}
+
+std::string KnownConstructionNames() {
+  std::string out;
+  const size_t count = std::size(kConstructions);
+  for (size_t i = 0; i < count; ++i) {
+    if (i > 0) out += i + 1 == count ? " and " : ", ";
+    out += "'" + std::string(kConstructions[i].name) + "'";
+    if (i == 0) out += " (the default, also '')";
+  }
+  return out;
+}
+
+Status Construction::ValidateSize(uint32_t n) const {
+  if (kind == ConstructionKind::kNet && (n < 16 || n > 65536 || (n & (n - 1)) != 0)) {
+    return Status::InvalidArgument("construction 'net' needs N a power of two from 16 to 65536, got " +
+                                   std::to_string(n));
+  }
+  return Status::Ok();
+}
+
+StatusOr<ConstructedSet> Construction::Build(uint32_t n, const std::vector<double>& directions_deg,
+                                             uint64_t seed, const ConstructionContext& context) const {
+  ConstructedSet out;
+  char detail[192];
+  if (lattice()) {
+    AlignedLatticeOptions options;
+    options.folded = folded();
+    options.window_deg = window_deg;
+    options.threads = context.threads;
+    options.cache = context.lattice_terms;
+    auto choice = ChooseAlignedLatticeGenerator(n, directions_deg, options);
+    if (!choice.ok()) return choice.status();
+    out.points = LatticePoints(n, choice->generator, seed, folded());
+    out.lattice_generator = choice->generator;
+    std::snprintf(detail, sizeof(detail), "generator=%u score=%.6g candidates=%u", choice->generator,
+                  choice->score, choice->candidates);
+    out.detail = detail;
+    return out;
+  }
+  if (kind == ConstructionKind::kNet) {
+    AlignedNetOptions options;
+    options.window_deg = window_deg;
+    auto net = AlignedNet(n, directions_deg, seed, options);
+    if (!net.ok()) return net.status();
+    out.points = std::move(net->points);
+    out.iterations = net->sweeps;
+    std::snprintf(detail, sizeof(detail), "objective %.4g -> %.4g flips=%d sweeps=%d", net->start_objective,
+                  net->objective, net->flips, net->sweeps);
+    out.detail = detail;
+    return out;
+  }
+  return Status::FailedPrecondition("the optimized sets are not constructed: run the optimizer");
+}
+
+}  // namespace alignset
