@@ -14,7 +14,7 @@
 #   ALIGNSET_CACHE_DIR       cache root (rootfs tarball, container storage)
 #   ALIGNSET_STORAGE_DRIVER  overlay (default when the kernel has it) or vfs
 #   ALIGNSET_ROOTFS_MAX_DAYS rebuild the cached rootfs after this many days (default 14)
-#   ALIGNSET_HOST_CLI        host alignset binary (default build/client/alignset, built if absent)
+#   ALIGNSET_HOST_CLI        host alignset binary (default build/cli/alignset, built if absent)
 #   ALIGNSET_BUILD_JOBS      compile jobs inside the image build (default 2)
 #   ALIGNSET_TEST_ITERATIONS optimizer iterations of the set the test requests (default 300)
 set -euo pipefail
@@ -213,7 +213,7 @@ for bin in alignset-server alignset-health-probe; do
 done
 
 # Host side: the project's CLI and the health probe, built here if CI has not built them.
-HOST_CLI="${ALIGNSET_HOST_CLI:-$ROOT/build/client/alignset}"
+HOST_CLI="${ALIGNSET_HOST_CLI:-$ROOT/build/cli/alignset}"
 if [ ! -x "$HOST_CLI" ]; then
   log "building the host CLI ($HOST_CLI)"
   [ -f "$ROOT/build/build.ninja" ] || cmake -S "$ROOT" -B "$ROOT/build" -G Ninja >/dev/null

@@ -22,7 +22,7 @@ N="${N:-1024}"
 THETA="${THETA:-30}"
 OUT="${OUT:-$BUILD_DIR/quickstart-n$N-theta$THETA.txt}"
 SERVER="$BUILD_DIR/server/alignset-server"
-CLI="$BUILD_DIR/client/alignset"
+CLI="$BUILD_DIR/cli/alignset"
 
 LOG="$BUILD_DIR/quickstart-server.log"
 . scripts/lib/loopback_server.sh

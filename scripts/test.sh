@@ -19,5 +19,5 @@ if [ "${ALIGNSET_SKIP_CONTAINER:-0}" = 1 ]; then
 elif [ "$(id -u)" -ne 0 ]; then
   echo "test.sh: container image test needs root; run 'sudo bash deploy/test-container.sh'"
 else
-  ALIGNSET_HOST_CLI="$BUILD_DIR/client/alignset" bash deploy/test-container.sh
+  ALIGNSET_HOST_CLI="$BUILD_DIR/cli/alignset" bash deploy/test-container.sh
 fi

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "client/whole_file.h"
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset {
 namespace {

@@ -25,6 +25,9 @@ import re
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checker_main  # noqa: E402
+
 # core/<idea> -> the core folders it may include (itself always allowed).
 CORE_ALLOWED = {
     "util": [],
@@ -36,7 +39,7 @@ CORE_ALLOWED = {
 }
 
 PUBLIC = "alignset-public"
-PRODUCT = ["proto", "core", "storage", "server", "client", "render", PUBLIC]
+PRODUCT = ["proto", "core", "storage", "server", "client", "render", "cli", PUBLIC]
 
 # node -> the other nodes it may include (itself always allowed). Top-level
 # folders are nodes; so are the public API (PUBLIC) and the generated proto
@@ -53,8 +56,12 @@ TOP_ALLOWED = {
     # The renderer uses the public API as a user's renderer would: never the
     # client's internals, the server or storage.
     "render": ["core", PUBLIC],
-    # The client library and the command line (`alignset render` runs render/).
-    "client": ["core", "storage", "proto", "render", PUBLIC],
+    # The client library a renderer links: never the renderer or the command
+    # line above it.
+    "client": ["core", "proto", PUBLIC],
+    # The `alignset` command line sits on top of every library it drives
+    # (`alignset render` runs render/, `alignset cache` storage/).
+    "cli": ["core", "storage", "client", "render", PUBLIC],
     "bench": PRODUCT,
     "tests": PRODUCT + ["bench"],
     "deploy": ["proto"],
@@ -191,7 +198,7 @@ def self_test():
         write("core/spectral/engine.h", '#include "core/util/status.h"\n')
         write("render/scene.h", '#include "core/util/status.h"\n#include <alignset/client.h>\n')
         write("client/include/alignset/client.h", "#include <alignset/status.h>\n")
-        write("client/cmd_render.cc", '#include "render/scene.h"\n#include "client/progress.h"\n')
+        write("cli/cmd_render.cc", '#include "render/scene.h"\n#include "cli/progress.h"\n')
         write("bench/render/main.cc", '#include "render/scene.h"\n#include "server/service.h"\n')
         if scan(tmp):
             print("self-test: a clean tree was flagged: %s" % scan(tmp))
@@ -207,9 +214,12 @@ def self_test():
             "render/bad_client.cc": '#include "client/service_client.h"\n', # render -> client internals
             "render/bad_proto.h": "#include <alignset/v1/alignset.pb.h>\n",  # render -> generated proto
             "core/util/bad_render.h": '#include "render/scene.h"\n',        # core -> render
-            "client/include/alignset/bad.h": '#include "client/progress.h"\n',  # public API -> internals
+            "client/include/alignset/bad.h": '#include "client/service_client.h"\n',  # public API -> internals
             "server/bad_bench.cc": '#include "bench/render/x.h"\n',         # product -> bench
-            "client/bad_tests.cc": '#include "tests/client/cli_runner.h"\n',  # product -> tests
+            "client/bad_tests.cc": '#include "tests/cli/cli_runner.h"\n',  # product -> tests
+            "client/bad_render.cc": '#include "render/scene.h"\n',        # client -> render (an arrow back up)
+            "client/bad_cli.cc": '#include "cli/progress.h"\n',           # client -> the command line
+            "render/bad_cli.cc": '#include "cli/progress.h"\n',           # render -> the command line
             "newfolder/x.cc": "",                                            # a folder without an entry
         }
         for rel, text in planted.items():
@@ -226,19 +236,7 @@ def self_test():
 
 
 def main(argv):
-    if len(argv) > 2:
-        print(__doc__)
-        return 2
-    if len(argv) == 2 and argv[1] == "--self-test":
-        return self_test()
-    root = argv[1] if len(argv) == 2 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-    errors = scan(os.path.abspath(root))
-    for e in errors:
-        print(e)
-    if errors:
-        return 1
-    print("include direction: clean")
-    return 0
+    return checker_main.run(argv, __doc__, scan, self_test, lambda root: "include direction: clean")
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@
 #include "render/pixel_samplers.h"
 #include "render/renderer.h"
 #include "render/scene.h"
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset::render {
 namespace {

@@ -139,7 +139,7 @@ TEST(SpectralEstimator, FindsTheGeometrysEdgeOnCleanEdgePixels) {
 // normal is found at that normal by the pre-pass of record (samples256 may
 // call a clean edge direction-less, never a wrong direction). Not asserted:
 // a pure linear gradient, to which grid16 gives directions up to 34 degrees
-// off the gradient (the separable window's own anisotropy; README).
+// off the gradient (the separable window's own anisotropy; docs/results.md, "Direction estimation").
 TEST(SpectralEstimator, ConstantAndStraightEdgePixels) {
   const Polygon square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (const char* spec : {kDefaultPrepass, "jgrid16", "samples256"}) {

@@ -10,7 +10,7 @@ sampling point sets as NumPy arrays.
 Angles are degrees and name the spectral direction: the normal of the
 integrand's edge. Runtime needs Debian's python3-grpcio, python3-protobuf and
 python3-numpy; the gRPC stubs (alignset.v1) are generated at build time by
-protoc and grpc_python_plugin (see README, "Python").
+protoc and grpc_python_plugin (see docs/usage.md, "Python").
 """
 
 from alignset.client import AlignedSet, AlignSetError, Client, lattice_points

@@ -1,4 +1,4 @@
-#include "client/patch_file.h"
+#include "cli/patch_file.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include <alignset/npy.h>
-#include "client/point_file.h"
+#include "cli/point_file.h"
 
 namespace alignset::cli {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
+#include "cli/commands.h"
 #include "storage/cache_diff.h"
 #include "storage/cache_recovery.h"
 #include "storage/partial_file.h"

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "client/cli_app.h"
+#include "cli/cli_app.h"
 
 namespace alignset::cli {
 
@@ -13,7 +13,7 @@ void AddSampleCommand(CLI::App& app);
 void AddAlignCommand(CLI::App& app);
 void AddVarianceCommand(CLI::App& app);
 // Expected power spectra and their profiles (analyze), variance against N
-// (convergence); PNGs through scripts/plot_analysis.py (client/plot_script.h).
+// (convergence); PNGs through scripts/plot_analysis.py (cli/plot_script.h).
 void AddAnalyzeCommand(CLI::App& app);
 void AddConvergenceCommand(CLI::App& app);
 // The principal direction of an integrand patch (core/analysis).
@@ -29,7 +29,7 @@ void AddPrecomputeCommand(CLI::App& app);
 void AddStatsCommand(CLI::App& app);
 #endif
 #ifdef ALIGNSET_HAVE_RENDER
-// `alignset render` (client/cmd_render.cc, on the renderer library render/):
+// `alignset render` (cli/cmd_render.cc, on the renderer library render/):
 // built with the client library.
 void AddRenderCommand(CLI::App& app);
 #endif

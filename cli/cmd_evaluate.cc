@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
-#include "client/point_file.h"
+#include "cli/commands.h"
+#include "cli/point_file.h"
 #include "core/spectral/direct_engine.h"
 #include "core/spectral/frequency_set.h"
 #include "core/sampling/owen_sobol.h"

@@ -1,4 +1,4 @@
-#include "client/point_file.h"
+#include "cli/point_file.h"
 
 #include <cerrno>
 #include <cmath>

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "client/progress.h"
-#include "tests/client/cli_runner.h"
+#include "cli/progress.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset::cli {
 namespace {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
-#include "client/point_file.h"
+#include "cli/commands.h"
+#include "cli/point_file.h"
 #include "core/align/canonical.h"
 
 namespace alignset::cli {

@@ -2,8 +2,8 @@
 #include <memory>
 #include <string>
 
-#include "client/commands.h"
-#include "client/service_options.h"
+#include "cli/commands.h"
+#include "cli/service_options.h"
 
 namespace alignset::cli {
 namespace {

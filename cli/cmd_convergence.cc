@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
-#include "client/json_text.h"
-#include "client/plot_script.h"
-#include "client/point_file.h"
+#include "cli/commands.h"
+#include "cli/json_text.h"
+#include "cli/plot_script.h"
+#include "cli/point_file.h"
 #include "core/analysis/convergence.h"
 #include "core/analysis/integrands.h"
 #include "core/analysis/variance.h"

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "client/point_file.h"
+#include "cli/point_file.h"
 #include "core/sampling/samplers.h"
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset::cli {
 namespace {

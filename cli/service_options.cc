@@ -1,4 +1,4 @@
-#include "client/service_options.h"
+#include "cli/service_options.h"
 
 #include <fstream>
 

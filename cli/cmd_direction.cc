@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "client/commands.h"
-#include "client/patch_file.h"
+#include "cli/commands.h"
+#include "cli/patch_file.h"
 #include "core/analysis/direction_estimate.h"
 
 namespace alignset::cli {

@@ -1,7 +1,7 @@
 // alignset: the command line. Local subcommands use core directly; the
 // service subcommands talk to alignset-server (client/service_client.h).
-#include "client/cli_app.h"
-#include "client/commands.h"
+#include "cli/cli_app.h"
+#include "cli/commands.h"
 
 #ifdef ALIGNSET_HAVE_STORAGE
 #include "storage/profile.h"

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "client/point_file.h"
+#include "cli/point_file.h"
 #include "core/sampling/samplers.h"
 #include "core/spectral/frequency_set.h"
 #ifdef ALIGNSET_HAVE_STORAGE
 #include "storage/set_cache.h"
 #endif
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset::cli {
 namespace {

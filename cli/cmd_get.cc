@@ -4,11 +4,12 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
-#include "client/patch_file.h"
-#include "client/point_file.h"
-#include "client/progress.h"
-#include "client/service_options.h"
+#include "cli/commands.h"
+#include "cli/patch_file.h"
+#include "cli/point_file.h"
+#include "cli/progress.h"
+#include "cli/service_options.h"
+#include "core/optimize/construction.h"
 
 namespace alignset::cli {
 namespace {
@@ -258,16 +259,13 @@ int RunGet(GetOptions o) {
     const SetInfo& si = s.info;
     if (o.sets) std::fprintf(report, "realization    %u (seed %llu)\n", si.realization,
                              static_cast<unsigned long long>(si.seed));
-    if (si.construction == "lattice" || si.construction == "net" || si.construction == "tent-lattice") {
+    const Construction* made = FindConstruction(si.construction);
+    if (made != nullptr && !made->optimized()) {
       std::fprintf(report, "construction   aligned %s, %.3f s, profile %s\n",
-                   si.construction == "net"            ? "(0,m,2)-net"
-                   : si.construction == "tent-lattice" ? "tent-folded rank-1 lattice"
-                                                       : "rank-1 lattice",
-                   si.optimize_seconds,
-                   si.profile.c_str());
+                   std::string(made->description).c_str(), si.optimize_seconds, si.profile.c_str());
       if (si.lattice_generator != 0) {
         std::fprintf(report, "generator      (1, %u) / %u%s\n", si.lattice_generator, si.n,
-                     si.construction == "tent-lattice" ? ", shifted then folded" : "");
+                     made->folded() ? ", shifted then folded" : "");
       }
     } else {
       std::fprintf(report, "loss           %.6g (spectrum %.6g, SW %.6g)\n", si.loss_total,

@@ -13,7 +13,7 @@
 
 #include "core/analysis/patch_sampling.h"
 #include "core/analysis/step_integrand.h"
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 #include "tests/client/npy_test_file.h"
 
 namespace alignset::cli {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "client/point_file.h"
-#include "tests/client/cli_runner.h"
+#include "cli/point_file.h"
+#include "tests/cli/cli_runner.h"
 #include "core/align/canonical.h"
 #include "core/sampling/samplers.h"
 #include "core/sampling/shear.h"

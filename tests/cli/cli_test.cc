@@ -5,8 +5,8 @@
 #include <fstream>
 #include <string>
 
-#include "client/point_file.h"
-#include "tests/client/cli_runner.h"
+#include "cli/point_file.h"
+#include "tests/cli/cli_runner.h"
 
 namespace {
 

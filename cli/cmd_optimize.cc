@@ -7,16 +7,17 @@
 #include <string>
 #include <vector>
 
-#include "client/commands.h"
-#include "client/point_file.h"
-#include "client/progress.h"
+#include "cli/commands.h"
+#include "cli/point_file.h"
+#include "cli/progress.h"
 #include "core/optimize/aligned_lattice.h"
 #include "core/optimize/aligned_net.h"
+#include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/direction_budget.h"
-#include "core/util/angles.h"
 #include "core/spectral/scaled_loss_engine.h"
 #include "core/spectral/spectral_engine.h"
+#include "core/util/angles.h"
 
 namespace alignset::cli {
 namespace {
@@ -81,9 +82,9 @@ int WriteConstructed(const OptimizeOptions& o, const std::vector<PointSet>& poin
 // realizations (seeds S, S+1, ...: other whole-cell shifts of one lattice).
 // tent-lattice the same, folded (TentLatticePoints: other continuous shifts
 // before the fold).
-int RunLattice(const OptimizeOptions& o) {
-  const bool folded = o.construction == "tent-lattice";
-  const double window = o.window.value_or(DefaultLatticeWindowDeg(folded));
+int RunLattice(const OptimizeOptions& o, const Construction& made) {
+  const bool folded = made.folded();
+  const double window = o.window.value_or(made.window_deg);
   AlignedLatticeOptions lattice;
   lattice.folded = folded;
   lattice.window_deg = window;
@@ -131,9 +132,9 @@ int RunLattice(const OptimizeOptions& o) {
 
 // --construction net: -m gives realizations from the seeds S, S+1, ...,
 // each its own flip search.
-int RunNet(const OptimizeOptions& o) {
+int RunNet(const OptimizeOptions& o, const Construction& made) {
   AlignedNetOptions net;
-  const double window = o.window.value_or(1.0);
+  const double window = o.window.value_or(made.window_deg);
   net.window_deg = window;
   const uint32_t n = static_cast<uint32_t>(o.n);
   if (!IsStdStream(o.out)) {
@@ -185,8 +186,10 @@ int RunOptimize(const OptimizeOptions& o) {
       }
     }
   }
-  if (o.construction == "lattice" || o.construction == "tent-lattice") return RunLattice(o);
-  if (o.construction == "net") return RunNet(o);
+  // The option's check admits known names only.
+  const Construction& construction = *FindConstruction(o.construction);
+  if (construction.lattice()) return RunLattice(o, construction);
+  if (construction.kind == ConstructionKind::kNet) return RunNet(o, construction);
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
   const bool supplement = o.profile == "supplement";

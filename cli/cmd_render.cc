@@ -1,16 +1,16 @@
 // `alignset render`: one image of one scene with one sampler, as a .npy
 // array, so that anyone can compare a sampler with any tool. The command
 // line around the renderer library render/ (alignset_render): built into the
-// `alignset` binary when the client library is (client/CMakeLists.txt).
+// `alignset` binary when the client library is (cli/CMakeLists.txt).
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "render/render_command.h"
-#include "client/commands.h"
-#include "client/progress.h"
-#include "client/service_options.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "cli/service_options.h"
 #include "core/sampling/samplers.h"
 
 namespace alignset::cli {

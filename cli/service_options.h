@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "client/cli_app.h"
+#include "cli/cli_app.h"
 #include <alignset/client.h>
 
 namespace alignset::cli {

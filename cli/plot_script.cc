@@ -1,4 +1,4 @@
-#include "client/plot_script.h"
+#include "cli/plot_script.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

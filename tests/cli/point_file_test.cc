@@ -18,10 +18,10 @@
 
 #include <alignset/npy.h>
 
-#include "client/point_file.h"
+#include "cli/point_file.h"
 #include "core/align/canonical.h"
 #include "core/sampling/samplers.h"
-#include "tests/client/cli_runner.h"
+#include "tests/cli/cli_runner.h"
 
 namespace alignset::cli {
 namespace {

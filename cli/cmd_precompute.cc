@@ -3,9 +3,10 @@
 #include <sstream>
 #include <string>
 
-#include "client/commands.h"
-#include "client/progress.h"
-#include "client/service_options.h"
+#include "cli/commands.h"
+#include "cli/progress.h"
+#include "cli/service_options.h"
+#include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
 #include "core/util/number_text.h"
 
@@ -87,7 +88,7 @@ int RunPrecompute(const PrecomputeOptions& o) {
   progress.Finish("");
   std::printf("items          %llu\n", static_cast<unsigned long long>(last->total));
   // A lattice or net is constructed, not optimized; the count is the same field.
-  std::printf("%s%llu\n", o.construction != "optimized" ? "constructed    " : "optimized      ",
+  std::printf("%s%llu\n", !FindConstruction(o.construction)->optimized() ? "constructed    " : "optimized      ",
               static_cast<unsigned long long>(last->done));
   std::printf("cached already %llu\n", static_cast<unsigned long long>(last->cached_already));
   std::printf("failed         %llu\n", static_cast<unsigned long long>(last->failed));

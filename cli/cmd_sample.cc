@@ -4,8 +4,8 @@
 #include <vector>
 #include <string>
 
-#include "client/commands.h"
-#include "client/point_file.h"
+#include "cli/commands.h"
+#include "cli/point_file.h"
 #include "core/sampling/samplers.h"
 #include "core/sampling/shear.h"
 

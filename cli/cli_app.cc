@@ -1,4 +1,4 @@
-#include "client/cli_app.h"
+#include "cli/cli_app.h"
 
 #include <algorithm>
 #include <charconv>
@@ -6,6 +6,7 @@
 #include <iostream>
 #include <vector>
 
+#include "core/optimize/construction.h"
 #include "core/util/number_text.h"
 
 namespace alignset::cli {
@@ -94,7 +95,9 @@ CLI::Validator FiniteIn(double lo, double hi) {
 }
 
 CLI::Validator ConstructionName() {
-  return CLI::IsMember({"optimized", "lattice", "tent-lattice", "net"});
+  std::vector<std::string> names;
+  for (const Construction& c : Constructions()) names.emplace_back(c.name);
+  return CLI::IsMember(names);
 }
 
 CLI::App* AddCommand(CLI::App& parent, const std::string& name, const std::string& description) {
