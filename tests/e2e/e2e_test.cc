@@ -159,7 +159,7 @@ TEST_F(E2eTest, AStoppingServerFinishesTheCallsInFlightAndDoesNotWaitForIdleClie
   // The call in flight is a large pmj02bn set (seconds to make; running
   // optimizations are not what the grace is for: they end at their next
   // time slice with UNAVAILABLE, for the client to retry elsewhere).
-  StartServer(With(kFast, {"--shutdown-grace", "60", "--max-n", "262144"}));
+  StartServer(With(kFast, {"--shutdown-grace", "60", "--max-n", "262144", "--log-level", "debug"}));
   auto idle = Client();
   ASSERT_TRUE(idle->GetAlignedSet(64, {30.0}).ok());
   ConnectOptions separate;
@@ -169,7 +169,8 @@ TEST_F(E2eTest, AStoppingServerFinishesTheCallsInFlightAndDoesNotWaitForIdleClie
   StatusOr<PointSet> running = Status::Internal("not run");
   const auto sent = std::chrono::steady_clock::now();
   std::thread call([&] { running = busy->GetSamples("pmj02bn", 262144, 1, std::nullopt); });
-  std::this_thread::sleep_for(500ms);
+  // The server has the call (its debug line) when SIGTERM comes.
+  EXPECT_TRUE(server_->WaitForLog({"N=262144"}, 1, std::chrono::seconds(20)));
   const int code = server_->Stop(SIGTERM);
   const double stopped = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
   call.join();
@@ -196,7 +197,7 @@ TEST_F(E2eTest, ACallSentWhileTheServerRestartsWaitsForItAndIsServed) {
   // failed UNAVAILABLE within its 0.7 s of retries.
   std::unique_ptr<ServerProcess> restarted;
   std::thread restart([&] {
-    std::this_thread::sleep_for(700ms);
+    std::this_thread::sleep_for(700ms);  // the down time itself, not a wait for the server
     restarted = std::make_unique<ServerProcess>(dir_.path(), With(kFast, {"--listen", "127.0.0.1:" + port}));
   });
   const auto sent = std::chrono::steady_clock::now();
@@ -472,19 +473,16 @@ TEST_F(E2eTest, WrongOrMissingTokenIsRefusedWhenAuthenticationIsOn) {
 }
 
 TEST_F(E2eTest, DeadlineStopsTheWaitAndTheAbandonedOptimizationIsCancelled) {
-  StartServer({"--max-iterations", "100000", "--workers", "1", "--threads-per-worker", "1"});
+  StartServer({"--max-iterations", "100000", "--workers", "1", "--threads-per-worker", "1", "--log-level", "info"});
   ConnectOptions o;
   o.timeout_seconds = 0.3;
   auto r = Client(o)->GetAlignedSet(2048, {7.0});
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.status().code(), Status::Code::kDeadlineExceeded) << r.status().message();
   // Nobody else wanted the set: the optimization is stopped, nothing stored.
-  ServiceMetrics m;
-  for (int i = 0; i < 100; ++i) {
-    m = Metrics();
-    if (m.optimizations_cancelled > 0) break;
-    std::this_thread::sleep_for(50ms);
-  }
+  // Its worker's line comes after the count.
+  EXPECT_TRUE(server_->WaitForLog({"optimize cancelled", "withdrawn"}, 1, std::chrono::seconds(10)));
+  const ServiceMetrics m = Metrics();
   EXPECT_EQ(m.optimizations_cancelled, 1u);
   EXPECT_EQ(m.optimizations_completed, 0u);
   EXPECT_EQ(m.running, 0u);

@@ -107,16 +107,6 @@ class PrecomputeStream {
   v1::PrecomputeProgress last_;
 };
 
-template <typename Pred>
-bool WaitFor(const std::string& address, Pred pred, std::chrono::seconds limit = 60s) {
-  const auto end = Clock::now() + limit;
-  while (Clock::now() < end) {
-    if (pred(GetMetrics(address))) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return false;
-}
-
 struct Timed {
   grpc::Status status;
   double latency = 0.0;
@@ -150,7 +140,7 @@ class FairnessE2eTest : public ::testing::Test {
 // optimization time, which the server reports in the response (so a slow
 // CI machine, where that time is longer, does not make the test flaky).
 TEST_F(FairnessE2eTest, SmallRequestCompletesWithinTwoSecondsPlusItsOwnTimeUnderAGreedyClient) {
-  StartServer({"--workers", "1", "--shutdown-grace", "1"});
+  StartServer({"--workers", "1", "--shutdown-grace", "1", "--log-level", "info"});
   const std::string address = server_->address();
   auto greedy = OwnStub(address);
   auto victim = OwnStub(address);
@@ -159,8 +149,7 @@ TEST_F(FairnessE2eTest, SmallRequestCompletesWithinTwoSecondsPlusItsOwnTimeUnder
   pre.add_n(32768);
   pre.set_space(v1::TWO_DIRECTIONS);
   PrecomputeStream precompute(greedy.get(), pre);
-  ASSERT_TRUE(WaitFor(address, [](const v1::MetricsResponse& m) { return m.running() == 1; }));
-  std::this_thread::sleep_for(300ms);  // the batch optimization is under way
+  ASSERT_TRUE(server_->WaitForLog({"optimize start"}, 1, 60s));  // the batch optimization
 
   // A batch optimization is running: the interactive request goes first.
   Timed a = AskFor(*victim, 256, 7.0);
@@ -171,10 +160,10 @@ TEST_F(FairnessE2eTest, SmallRequestCompletesWithinTwoSecondsPlusItsOwnTimeUnder
 
   HeldCalls held(greedy.get());
   for (uint32_t i = 0; i < 50; ++i) held.Start(SetRequest(32768 + 16 * i, {30.0}));
-  ASSERT_TRUE(WaitFor(address, [](const v1::MetricsResponse& m) {
-    return m.requests_get() >= 51 && m.queue_length() >= 50 && m.running() == 1;
-  }));
-  std::this_thread::sleep_for(300ms);  // one of them is running
+  // All queued (the victim's first and the 50), and one of the 50 running:
+  // the third start after the batch optimization's and the victim's.
+  ASSERT_TRUE(server_->WaitForLog({"(interactive, position"}, 51, 60s));
+  ASSERT_TRUE(server_->WaitForLog({"optimize start"}, 3, 60s));
 
   Timed b = AskFor(*victim, 256, 8.0);
   ASSERT_TRUE(b.status.ok()) << b.status.error_message();
@@ -197,6 +186,8 @@ TEST_F(FairnessE2eTest, PrecomputeAnnouncesItsTotalAtOnceAndSendsAHeartbeat) {
   pre.add_n(65536);  // every item takes a minute or more
   pre.set_space(v1::ONE_DIRECTION);
   PrecomputeStream precompute(stub.get(), pre);
+  // Not a wait for the server: the stream is observed for 5.5 s, and the
+  // window is the measurement (its first message, its longest silence).
   std::this_thread::sleep_for(5500ms);
   const std::vector<double> at = precompute.arrivals();
   ASSERT_FALSE(at.empty()) << "nothing in 5.5 s";
@@ -211,34 +202,37 @@ TEST_F(FairnessE2eTest, PrecomputeAnnouncesItsTotalAtOnceAndSendsAHeartbeat) {
 // Issue 16, item 3: waiting calls do not each hold a server thread.
 TEST_F(FairnessE2eTest, TwoThousandWaitingCallsHoldNoThreadEach) {
   StartServer({"--workers", "1", "--threads-per-worker", "1", "--max-iterations", "1000000",
-               "--shutdown-grace", "1"});
+               "--shutdown-grace", "1", "--log-level", "debug"});
   auto stub = OwnStub(server_->address());
   const ProcessFigures before = ReadProcessFigures(server_->pid());
   {
     HeldCalls held(stub.get());
     for (int i = 0; i < 2000; ++i) held.Start(SetRequest(1024, {30.0}));  // one key, one optimization
-    ASSERT_TRUE(WaitFor(server_->address(), [](const v1::MetricsResponse& m) { return m.requests_get() == 2000; }));
-    std::this_thread::sleep_for(500ms);
+    ASSERT_TRUE(server_->WaitForLog({"waits for its optimization"}, 2000, 60s));
     const ProcessFigures waiting = ReadProcessFigures(server_->pid());
     EXPECT_LT(waiting.threads - before.threads, 40)
         << before.threads << " threads before, " << waiting.threads << " with 2000 calls waiting";
     EXPECT_EQ(GetMetrics(server_->address()).optimizations_started(), 1u);
     EXPECT_EQ(GetMetrics(server_->address()).waiting_calls(), 2000u);
   }
-  // All cancelled: the optimization nobody waits for is stopped.
-  EXPECT_TRUE(WaitFor(server_->address(), [](const v1::MetricsResponse& m) {
-    return m.waiting_calls() == 0 && m.running() == 0 && m.optimizations_cancelled() == 1;
-  }, 20s));
+  // All cancelled: the optimization nobody waits for is stopped (its
+  // worker's line comes after the count).
+  EXPECT_TRUE(server_->WaitForLog({"optimize cancelled", "withdrawn"}, 1, 20s));
+  const v1::MetricsResponse after = GetMetrics(server_->address());
+  EXPECT_EQ(after.waiting_calls(), 0u);
+  EXPECT_EQ(after.running(), 0u);
+  EXPECT_EQ(after.optimizations_cancelled(), 1u);
 }
 
 TEST_F(FairnessE2eTest, CallsBeyondTheWaitingAndStreamCapsGetResourceExhausted) {
   StartServer({"--workers", "1", "--threads-per-worker", "1", "--max-iterations", "1000000",
-               "--max-waiting-calls", "100", "--max-precompute-streams", "1", "--shutdown-grace", "1"});
+               "--max-waiting-calls", "100", "--max-precompute-streams", "1", "--shutdown-grace", "1",
+               "--log-level", "debug"});
   auto stub = OwnStub(server_->address());
   HeldCalls held(stub.get());
   for (int i = 0; i < 150; ++i) held.Start(SetRequest(1024, {30.0}));
-  ASSERT_TRUE(WaitFor(server_->address(), [](const v1::MetricsResponse& m) { return m.requests_get() == 150; }));
-  // 50 refused at once; 100 wait.
+  // 100 wait (their lines), 50 are refused at once (counted as they end).
+  ASSERT_TRUE(server_->WaitForLog({"waits for its optimization"}, 100, 60s));
   EXPECT_EQ(held.CountEnded(grpc::StatusCode::RESOURCE_EXHAUSTED, 1s), 50);
   EXPECT_EQ(GetMetrics(server_->address()).waiting_calls(), 100u);
   EXPECT_EQ(GetMetrics(server_->address()).rejected_waiting_limit(), 50u);
@@ -247,7 +241,7 @@ TEST_F(FairnessE2eTest, CallsBeyondTheWaitingAndStreamCapsGetResourceExhausted) 
   pre.add_n(1024);
   pre.set_space(v1::ONE_DIRECTION);
   PrecomputeStream first(stub.get(), pre);
-  ASSERT_TRUE(WaitFor(server_->address(), [](const v1::MetricsResponse& m) { return m.requests_precompute() == 1; }));
+  ASSERT_TRUE(server_->WaitForLog({"precompute: "}, 1, 60s));
   grpc::ClientContext ctx;
   auto second = stub->Precompute(&ctx, pre);
   v1::PrecomputeProgress p;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/inotify.h>
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include "core/optimize/optimizer.h"
+#include "tests/e2e/file_events.h"
 
 namespace alignset::e2e {
 
@@ -55,24 +57,41 @@ ServerProcess::ServerProcess(const std::string& dir, const std::vector<std::stri
     error_ = "fork failed";
     return;
   }
-  for (int i = 0; i < 300; ++i) {  // up to 30 s on a loaded machine
+  // The server renames its port file into place once it listens: that
+  // event, or its exit, ends the wait (up to 30 s on a loaded machine).
+  auto listening = [&] {
     std::ifstream in(port_file);
-    if (in >> port_ && port_ > 0) {
-      std::string word;
-      if (in >> word && word == "metrics") in >> metrics_port_;
-      return;
-    }
+    if (!(in >> port_) || port_ <= 0) return false;
+    std::string word;
+    if (in >> word && word == "metrics") in >> metrics_port_;
+    return true;
+  };
+  const WaitEnd end = WaitForFileEvent(dir, IN_MOVED_TO | IN_CLOSE_WRITE, pid_, listening, std::chrono::seconds(30));
+  if (end == WaitEnd::kReady) return;
+  if (end == WaitEnd::kExited) {
     int status = 0;
-    if (waitpid(pid_, &status, WNOHANG) == pid_) {
-      std::ifstream l(log);
-      std::string text((std::istreambuf_iterator<char>(l)), std::istreambuf_iterator<char>());
-      error_ = "alignset-server exited during start-up: " + text;
-      pid_ = -1;
-      return;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    waitpid(pid_, &status, 0);
+    std::ifstream l(log);
+    std::string text((std::istreambuf_iterator<char>(l)), std::istreambuf_iterator<char>());
+    error_ = "alignset-server exited during start-up: " + text;
+    pid_ = -1;
+    return;
   }
   error_ = "alignset-server wrote no port file within 30 s";
+}
+
+bool ServerProcess::WaitForLog(const std::vector<std::string>& texts, int count,
+                               std::chrono::milliseconds timeout) const {
+  auto seen = [&] {
+    std::ifstream in(log_path_);
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    int found = 0;
+    for (const std::string& text : texts) {
+      for (size_t at = log.find(text); at != std::string::npos; at = log.find(text, at + 1)) ++found;
+    }
+    return found >= count;
+  };
+  return WaitForFileEvent(log_path_, IN_MODIFY, pid_, seen, timeout) == WaitEnd::kReady;
 }
 
 int ServerProcess::Stop(int sig) {

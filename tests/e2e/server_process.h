@@ -2,6 +2,7 @@
 
 #include <sys/types.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +45,10 @@ class ServerProcess {
 
   // Sends `sig` and waits for the exit; returns the wait status.
   int Stop(int sig);
+  // Waits, on the log file's write events, until `texts` have been logged
+  // at least `count` times together (true) or `timeout` passes (false). The
+  // server logs at warn unless a test passes --log-level.
+  bool WaitForLog(const std::vector<std::string>& texts, int count, std::chrono::milliseconds timeout) const;
 
  private:
   std::string error_;

@@ -6,8 +6,10 @@ errors with the right status codes.
   ALIGNSET_SERVER_BIN=build/server/alignset-server PYTHONPATH=build/python \
       /usr/bin/python3 tests/python/test_client.py
 """
+import ctypes
 import math
 import os
+import select
 import shutil
 import subprocess
 import tempfile
@@ -27,6 +29,44 @@ def read(path):
         return f.read()
 
 
+IN_CLOSE_WRITE, IN_MOVED_TO = 0x8, 0x80
+
+
+def wait_for_file_event(directory, ready, process, timeout):
+    """Waits on events, not on a clock: ready() is asked now and after every
+    file written or moved into `directory` (inotify, through libc), until it
+    holds (True) or `process` exits or `timeout` seconds pass (False)."""
+    libc = ctypes.CDLL(None, use_errno=True)
+    fd = libc.inotify_init1(os.O_NONBLOCK | os.O_CLOEXEC)
+    if fd >= 0 and libc.inotify_add_watch(fd, os.fsencode(directory), IN_CLOSE_WRITE | IN_MOVED_TO) < 0:
+        os.close(fd)
+        fd = -1
+    exited = os.pidfd_open(process.pid)
+    end = time.monotonic() + timeout
+    try:
+        while True:
+            if ready():
+                return True
+            left = end - time.monotonic()
+            if left <= 0 or process.poll() is not None:
+                return ready()
+            # Without inotify, a tenth of a second between looks is the fallback.
+            wanted = [exited] + ([fd] if fd >= 0 else [])
+            readable, _, _ = select.select(wanted, [], [], left if fd >= 0 else min(left, 0.1))
+            if exited in readable:
+                return ready()
+            if fd in readable:
+                try:
+                    while os.read(fd, 4096):
+                        pass
+                except BlockingIOError:
+                    pass
+    finally:
+        os.close(exited)
+        if fd >= 0:
+            os.close(fd)
+
+
 def start_server(directory, listen="127.0.0.1:0", extra=()):
     """alignset-server on `listen` with its database in `directory`: (process, log, address)."""
     port_file = os.path.join(directory, "port")
@@ -39,12 +79,11 @@ def start_server(directory, listen="127.0.0.1:0", extra=()):
          "--workers", "2", "--threads-per-worker", "1", "--max-n", "4096",
          "--log-level", "warn", *extra],
         stdout=log, stderr=log)
-    for _ in range(300):
-        if os.path.exists(port_file) and read(port_file).strip():
-            break
-        if server.poll() is not None:
-            raise RuntimeError("alignset-server exited: " + read(log.name))
-        time.sleep(0.1)
+    # The server renames its port file into place once it listens.
+    listening = lambda: os.path.exists(port_file) and read(port_file).strip() != ""
+    if not wait_for_file_event(directory, listening, server, 30):
+        server.kill()
+        raise RuntimeError("alignset-server did not start: " + read(log.name))
     return server, log, "127.0.0.1:" + read(port_file).split()[0]
 
 
@@ -304,7 +343,7 @@ class ServerTest(unittest.TestCase):
                         down.get(64, 30)
                 with alignset.Client(self.address) as up:
                     up.get(64, 30)
-            time.sleep(0.5)  # the pollers' next round
+            time.sleep(0.5)  # not a wait for the server: gRPC's pollers get their next round
         finally:
             threading.excepthook = hook
         self.assertEqual(errors, [])
