@@ -14,7 +14,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD_DIR="${BUILD_DIR:-build}"
-CLI="$BUILD_DIR/client/alignset"
+CLI="$BUILD_DIR/cli/alignset"
 N="${N:-256,1024,4096}"
 THETA="${THETA:-10,30,45,63,82}"
 SHIFTS="${SHIFTS:-256}"

@@ -1,5 +1,5 @@
 // Accuracy and cost of the direction estimator (issue 12, "What it must
-// show"). Every figure of the README's "Direction estimation" tables:
+// show"). Every figure of docs/results.md's "Direction estimation" tables:
 //   build/bench/direction_accuracy [--cases 500] > bench/results/direction_accuracy.txt
 // Errors are axial (mod 180) in degrees. Angles and offsets are drawn from a
 // fixed seed, so the output is reproducible; a case flagged "no dominant
@@ -449,7 +449,7 @@ int main(int argc, char** argv) {
     });
   }
 
-  // --- Choices (README "Choices"): the same clean 64x64 steps.
+  // --- Choices (docs/method.md, "Where alignset chooses"): the same clean 64x64 steps.
   std::printf("\nchoices, clean step 64x64\n");
   Header();
   auto choice = [&](const std::string& name, DirectionOptions o) {

@@ -14,7 +14,7 @@ SIZES=("$@")
 DIR_FLAGS=()
 for d in ${DIRS:-30}; do DIR_FLAGS+=(--dir "$d"); done
 [ ${#SIZES[@]} -gt 0 ] || SIZES=(256 1024 4096 16384 65536)
-CLI="$BUILD/client/alignset"
+CLI="$BUILD/cli/alignset"
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 echo "# directions ${DIRS:-30}; $(uptime)"

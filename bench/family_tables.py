@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Markdown tables of bench/integrand_family.sh's TSV files (README, issue 11).
+"""Markdown tables of bench/integrand_family.sh's TSV files (docs/results.md, "Integrand family").
 
 For each profile: the ratio aligned / Owen-Sobol (16 scrambles) of every
 family member at every (θ, N), the worst ratio per member, and the fitted

@@ -32,7 +32,7 @@ WORK=$(mktemp -d)
 trap 'stop_loopback_server; rm -rf "$WORK"' EXIT
 start_loopback_server 30 "$WORK/server.log" "$BUILD_DIR/server/alignset-server" \
   --db "$WORK/fill.sqlite" --log-level warn ${SERVER_FLAGS---warm-budget 0}
-CLI="$BUILD_DIR/client/alignset"
+CLI="$BUILD_DIR/cli/alignset"
 
 rows=()
 run() {  # label keys_in_space keys_run args...

@@ -1,5 +1,5 @@
 #!/bin/bash
-# The integrand-family tables of the README (issue: the low-frequency floor):
+# The integrand-family tables (docs/results.md, "Integrand family"):
 # alignset's profile and the supplement's (algorithm version 2) against
 # Owen-Sobol (16 scrambles), same integrands and shifts, N = 256..4096 at five
 # angles, two-direction sets, the larger N with fewer seeds, and the exact

@@ -25,7 +25,7 @@ cmake --build "$BUILD_DIR" --target alignset-server alignset >/dev/null
 WORK=$(mktemp -d)
 . scripts/lib/loopback_server.sh
 trap 'stop_loopback_server; rm -rf "$WORK"' EXIT
-CLI="$BUILD_DIR/client/alignset"
+CLI="$BUILD_DIR/cli/alignset"
 
 declare -A seconds
 # fill TAG TERMS_MB ARGS...: one fresh server, one precompute; its seconds.

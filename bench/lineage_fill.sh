@@ -47,7 +47,7 @@ if [[ -z ${SUMMARY_ONLY:-} ]]; then
     shift 2
     local t0
     t0=$(date +%s.%N)
-    "$build/client/alignset" precompute --server "127.0.0.1:$port" "$@" > "$logs/$name.out" 2>&1
+    "$build/cli/alignset" precompute --server "127.0.0.1:$port" "$@" > "$logs/$name.out" 2>&1
     touch "$logs/wall.txt"
     grep -v "^$name " "$logs/wall.txt" > "$logs/wall.tmp" || true
     echo "$name $(echo "$(date +%s.%N) - $t0" | bc)" >> "$logs/wall.tmp"

@@ -24,7 +24,7 @@
 #include <thread>
 #include <vector>
 
-#include "client/cli_app.h"
+#include "cli/cli_app.h"
 #include <alignset/client.h>
 #include "core/align/canonical.h"
 #include "core/sampling/owen_sobol.h"

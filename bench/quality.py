@@ -55,7 +55,7 @@ def slope(ns, vs):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/client/alignset")
+    ap.add_argument("--cli", default="build/cli/alignset")
     ap.add_argument("--n", default="256,1024,4096")
     ap.add_argument("--theta", default="10,30,45")
     ap.add_argument("--engine", default="auto")

@@ -5,7 +5,7 @@ Starts alignset-server on a fresh cache (default optimizer settings), fetches
 realizations 0..R-1 of the key θ for each N with `alignset get -m R` (one batch
 call), and measures each with `alignset evaluate`: the Cranley-Patterson-rotated
 variance on 8 parallel step edges with normal θ (offsets -1/4..1/4, 4096 shifts
-each; the measure of the README's quality table and of the CTest
+each; the measure of docs/results.md's quality table and of the CTest
 Realizations.EveryRealizationMeetsTheQualityBarOfRealizationZero), beside
 Owen-scrambled Sobol (mean of 4 scrambles, same shifts). Prints per N: realization 0, the mean / min / max over
 all realizations, the worst realization against realization 0, and Owen-Sobol over

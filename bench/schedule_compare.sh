@@ -9,7 +9,7 @@ set -euo pipefail
 BUILD="${1:-build}"
 SEEDS="${2:-4}"
 REF="${3:-1.4653e-7}"
-CLI="$BUILD/client/alignset"
+CLI="$BUILD/cli/alignset"
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 

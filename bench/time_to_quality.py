@@ -67,7 +67,7 @@ def converged(args, seed, label, extra):
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cli", default="build/client/alignset")
+    ap.add_argument("--cli", default="build/cli/alignset")
     ap.add_argument("--n", type=int, default=4096)
     ap.add_argument("--theta", type=float, default=30.0)
     ap.add_argument("--seeds", type=int, default=8)

@@ -13,7 +13,7 @@ Every figure is made by the alignset CLI alone: `optimize` for the sets (default
 settings unless the figure is about a setting), `sample` for the baselines,
 `convergence --json` for variance against N and `analyze --json` for spectra; the
 PNGs are drawn by scripts/plot_analysis.py, the one plotting path. Each writes
-bench/results/<fig>.png and <fig>.txt (the table the README quotes).
+bench/results/<fig>.png and <fig>.txt (the table docs/results.md quotes).
 
 Optimized sets are kept under build/figures/<version>/, where <version> is a hash
 of `alignset --version` (release, algorithm version, default profile): when the
@@ -301,7 +301,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("figure", choices=list(FIGURES) + ["all"])
-    ap.add_argument("--cli", default=os.path.join(ROOT, "build/client/alignset"))
+    ap.add_argument("--cli", default=os.path.join(ROOT, "build/cli/alignset"))
     ap.add_argument("--work", default=os.path.join(ROOT, "build/figures"))
     ap.add_argument("--results", default=os.path.join(ROOT, "bench/results"))
     ap.add_argument("--seeds", type=int, default=2, help="optimized sets per N")

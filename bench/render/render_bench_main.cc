@@ -1,4 +1,4 @@
-// The rendered proof (README, "Rendered proof"): renders both scenes with
+// The rendered proof (docs/rendering.md, "Rendered proof"): renders both scenes with
 // every sampler at every N against a running alignset-server and writes the
 // measurements bench/render/plot_render.py turns into figures and tables.
 // bench/render/run.sh starts its own server and runs both.
@@ -51,7 +51,7 @@
 #include "render/scene.h"
 #include "render/set_fetch.h"
 #include "render/spectral_estimator.h"
-#include "client/progress.h"
+#include "cli/progress.h"
 #include <alignset/client.h>
 #include <alignset/npy.h>
 #include "core/sampling/screen_space_rank1.h"

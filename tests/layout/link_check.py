@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks that every relative link in the project's documentation resolves.
 
-Scans README.md, every docs/*.md and deploy/README.md for Markdown links and
+Scans README.md, every docs/*.md, deploy/, core/ and bench/README.md for Markdown links and
 images, [text](target) and ![alt](target). A target with a scheme (http:,
 https:, mailto:) is skipped; any other target must name an existing file or
 folder relative to the document, and a #fragment must match a heading of the
@@ -19,13 +19,17 @@ import re
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checker_main  # noqa: E402
+
 LINK_RE = re.compile(r"!?\[(?:[^\]\\]|\\.)*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 HEADING_RE = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")
 CODE_SPAN_RE = re.compile(r"`+[^`]*`+")
 
 
 def documents(root):
-    docs = [os.path.join(root, "README.md"), os.path.join(root, "deploy", "README.md")]
+    docs = [os.path.join(root, "README.md"), os.path.join(root, "deploy", "README.md"),
+            os.path.join(root, "bench", "README.md"), os.path.join(root, "core", "README.md")]
     docs_dir = os.path.join(root, "docs")
     if os.path.isdir(docs_dir):
         docs += [os.path.join(docs_dir, f) for f in sorted(os.listdir(docs_dir)) if f.endswith(".md")]
@@ -113,19 +117,7 @@ def self_test():
 
 
 def main(argv):
-    if len(argv) > 2:
-        print(__doc__)
-        return 2
-    if len(argv) == 2 and argv[1] == "--self-test":
-        return self_test()
-    root = argv[1] if len(argv) == 2 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-    errors = check(os.path.abspath(root))
-    for e in errors:
-        print(e)
-    if errors:
-        return 1
-    print("links: clean (%d documents)" % len(documents(os.path.abspath(root))))
-    return 0
+    return checker_main.run(argv, __doc__, check, self_test, lambda root: "links: clean (%d documents)" % len(documents(root)))
 
 
 if __name__ == "__main__":
