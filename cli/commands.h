@@ -21,6 +21,7 @@ void AddDirectionCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 void AddCacheCommand(CLI::App& app);
+void AddExportCommand(CLI::App& app);
 #endif
 #ifdef ALIGNSET_HAVE_SERVICE
 // Clients of alignset-server (client/service_client.h).

@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   AddDirectionCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
+  AddExportCommand(app);
 #endif
 #ifdef ALIGNSET_HAVE_SERVICE
   AddGetCommand(app);

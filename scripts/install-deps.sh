@@ -24,7 +24,7 @@ TEST_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   sqlite3 openssl
   python3 python3-numpy python3-matplotlib python3-yaml python3-grpcio python3-protobuf
-  python3-grpc-tools
+  python3-grpc-tools python3-dev pybind11-dev
   yamllint buildah podman debootstrap
 )
 

@@ -5,16 +5,14 @@
 #include <span>
 #include <vector>
 
+#include "core/util/crc32c.h"
 #include "core/util/point_set.h"
 #include "core/util/status.h"
 
 namespace alignset::storage {
 
-// CRC-32C (Castagnoli, reflected polynomial 0x82F63B78, as in iSCSI, ext4 and
-// LevelDB). Chosen for the blob checksum because it detects every error
-// burst of up to 32 bits and every odd number of flipped bits, and has
-// published test vectors. `crc` continues an earlier call (start with 0).
-uint32_t Crc32c(std::span<const uint8_t> data, uint32_t crc = 0);
+// The blob checksum (core/util/crc32c.h).
+using ::alignset::Crc32c;
 
 // Bytes per point in a blob: x then y, each an IEEE-754 binary64.
 inline constexpr size_t kBytesPerPoint = 16;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/util/point_set.h"
@@ -113,6 +114,8 @@ uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, b
 // realization is a centred N-rooks set (one point in each column and row, at
 // its middle): the midpoint rule in each coordinate.
 PointSet Rank1LatticePoints(uint32_t n, uint32_t g, uint64_t seed);
+// The same points into `out` (n of them), bit for bit, without allocating.
+void Rank1LatticePointsInto(uint32_t n, uint32_t g, uint64_t seed, std::span<Point2> out);
 
 // The tent-folded lattice with generator g and realization `seed`: each
 // point of the lattice {frac(i (1, g) / N + s)}, s uniform in [0, 1)^2 drawn

@@ -1,9 +1,9 @@
 #include "core/optimize/construction.h"
 
-#include <cstdio>
+#include <iterator>
+#include <string>
 
 #include "core/optimize/aligned_lattice.h"
-#include "core/optimize/aligned_net.h"
 
 namespace alignset {
 namespace {
@@ -61,40 +61,6 @@ Status Construction::ValidateSize(uint32_t n) const {
                                    std::to_string(n));
   }
   return Status::Ok();
-}
-
-StatusOr<ConstructedSet> Construction::Build(uint32_t n, const std::vector<double>& directions_deg,
-                                             uint64_t seed, const ConstructionContext& context) const {
-  ConstructedSet out;
-  char detail[192];
-  if (lattice()) {
-    AlignedLatticeOptions options;
-    options.folded = folded();
-    options.window_deg = window_deg;
-    options.threads = context.threads;
-    options.cache = context.lattice_terms;
-    auto choice = ChooseAlignedLatticeGenerator(n, directions_deg, options);
-    if (!choice.ok()) return choice.status();
-    out.points = LatticePoints(n, choice->generator, seed, folded());
-    out.lattice_generator = choice->generator;
-    std::snprintf(detail, sizeof(detail), "generator=%u score=%.6g candidates=%u", choice->generator,
-                  choice->score, choice->candidates);
-    out.detail = detail;
-    return out;
-  }
-  if (kind == ConstructionKind::kNet) {
-    AlignedNetOptions options;
-    options.window_deg = window_deg;
-    auto net = AlignedNet(n, directions_deg, seed, options);
-    if (!net.ok()) return net.status();
-    out.points = std::move(net->points);
-    out.iterations = net->sweeps;
-    std::snprintf(detail, sizeof(detail), "objective %.4g -> %.4g flips=%d sweeps=%d", net->start_objective,
-                  net->objective, net->flips, net->sweeps);
-    out.detail = detail;
-    return out;
-  }
-  return Status::FailedPrecondition("the optimized sets are not constructed: run the optimizer");
 }
 
 }  // namespace alignset

@@ -35,18 +35,22 @@ uint32_t SobolDim1(uint32_t index) {
 }
 
 PointSet OwenScrambledSobol(uint32_t n, uint64_t seed) {
+  PointSet points(n);
+  OwenScrambledSobolInto(seed, 0, points);
+  return points;
+}
+
+void OwenScrambledSobolInto(uint64_t seed, uint32_t first, std::span<Point2> out) {
   const uint32_t index_seed = static_cast<uint32_t>(HashCombine(seed, 0));
   const uint32_t seed_x = static_cast<uint32_t>(HashCombine(seed, 1));
   const uint32_t seed_y = static_cast<uint32_t>(HashCombine(seed, 2));
-  PointSet points(n);
-  for (uint32_t i = 0; i < n; ++i) {
+  for (size_t k = 0; k < out.size(); ++k) {
     // Shuffling the index with a nested uniform scramble keeps every
     // power-of-two prefix a net (Burley 2020, section 4).
-    const uint32_t j = NestedUniformScramble(i, index_seed);
-    points[i].x = ToUnit(NestedUniformScramble(SobolDim0(j), seed_x));
-    points[i].y = ToUnit(NestedUniformScramble(SobolDim1(j), seed_y));
+    const uint32_t j = NestedUniformScramble(first + static_cast<uint32_t>(k), index_seed);
+    out[k].x = ToUnit(NestedUniformScramble(SobolDim0(j), seed_x));
+    out[k].y = ToUnit(NestedUniformScramble(SobolDim1(j), seed_y));
   }
-  return points;
 }
 
 }  // namespace alignset

@@ -20,7 +20,8 @@ fail() { echo "run_consumer_test: $*" >&2; exit 1; }
 PREFIX="$WORK/prefix"
 cmake --install "$BUILD" --prefix "$PREFIX" > "$WORK/install.log" || { cat "$WORK/install.log"; fail "install failed"; }
 for f in include/alignset/client.h include/alignset/status.h include/alignset/point_set.h \
-         include/alignset/version.h bin/alignset bin/alignset-server; do
+         include/alignset/version.h include/alignset/set_table.h include/alignset/aligned_sampler.h \
+         include/alignset/set_choice.h bin/alignset bin/alignset-server; do
   [ -e "$PREFIX/$f" ] || fail "the install lacks $f"
 done
 CONFIG="$(find "$PREFIX" -name alignsetConfig.cmake)"
@@ -56,6 +57,16 @@ start_loopback_server 30 "$WORK/server.log" "$PREFIX/bin/alignset-server" --db "
   || fail "the installed server did not start"
 "$WORK/cmake-build/alignset_consumer" "$ADDR"
 "$WORK/pc-consumer" "$ADDR"
+
+# 4. A renderer's path: precompute on the server, export a table with the
+# installed CLI, render a scene of the consumer's own through the sampler
+# library with that table alone (the consumer checks its edge pixels
+# against Owen-Sobol at the same total samples).
+"$PREFIX/bin/alignset" precompute --server "$ADDR" -n 256 --space 1dir --construction lattice > "$WORK/pre.log" 2>&1 \
+  || { cat "$WORK/pre.log"; fail "precompute failed"; }
+"$PREFIX/bin/alignset" export --db "$WORK/cache.sqlite" -n 256 --construction lattice -o "$WORK/sets.tbl" \
+  > "$WORK/export.log" 2>&1 || { cat "$WORK/export.log"; fail "export failed"; }
+"$WORK/cmake-build/render_with_table" "$WORK/sets.tbl" || fail "the consumer's render through the table failed"
 # The installed Python package too, when the build made it.
 PYDIR="$(find "$PREFIX" -type d -path '*dist-packages' | head -n 1)"
 if [ -n "$PYDIR" ] && [ -f "$PYDIR/alignset/v1/alignset_pb2.py" ]; then

@@ -39,7 +39,7 @@ CORE_ALLOWED = {
 }
 
 PUBLIC = "alignset-public"
-PRODUCT = ["proto", "core", "storage", "server", "client", "render", "cli", PUBLIC]
+PRODUCT = ["proto", "core", "storage", "server", "client", "sampler", "render", "cli", PUBLIC]
 
 # node -> the other nodes it may include (itself always allowed). Top-level
 # folders are nodes; so are the public API (PUBLIC) and the generated proto
@@ -50,7 +50,9 @@ TOP_ALLOWED = {
     "core": [],
     "storage": ["core"],
     "server": ["core", "storage", "proto"],
-    # The installed headers: client.h, pixel_sampler.h, ... and core's
+    # The sampler library a renderer links: core and the public headers only.
+    "sampler": ["core", PUBLIC],
+    # The installed headers: client.h, pixel_sampler.h, set_table.h, ... and core's
     # status.h, point_set.h, directions.h (installed under <alignset/>).
     PUBLIC: ["core"],
     # The renderer uses the public API as a user's renderer would: never the
@@ -61,7 +63,7 @@ TOP_ALLOWED = {
     "client": ["core", "proto", PUBLIC],
     # The `alignset` command line sits on top of every library it drives
     # (`alignset render` runs render/, `alignset cache` storage/).
-    "cli": ["core", "storage", "client", "render", PUBLIC],
+    "cli": ["core", "storage", "client", "sampler", "render", PUBLIC],
     "bench": PRODUCT,
     "tests": PRODUCT + ["bench"],
     "deploy": ["proto"],
@@ -79,7 +81,7 @@ ANGLE_RE = re.compile(r'^\s*#\s*include\s+<(alignset)/([^>]*)>')
 def owner_of_file(rel):
     """The node a source file belongs to."""
     parts = rel.split(os.sep)
-    if parts[:3] == ["client", "include", "alignset"]:
+    if parts[:3] in (["client", "include", "alignset"], ["sampler", "include", "alignset"]):
         return PUBLIC
     return parts[0]
 
@@ -220,6 +222,8 @@ def self_test():
             "client/bad_render.cc": '#include "render/scene.h"\n',        # client -> render (an arrow back up)
             "client/bad_cli.cc": '#include "cli/progress.h"\n',           # client -> the command line
             "render/bad_cli.cc": '#include "cli/progress.h"\n',           # render -> the command line
+            "sampler/bad_client.cc": '#include "client/service_client.h"\n',  # sampler -> the client's internals
+            "sampler/bad_storage.cc": '#include "storage/set_cache.h"\n',     # sampler -> SQLite
             "newfolder/x.cc": "",                                            # a folder without an entry
         }
         for rel, text in planted.items():

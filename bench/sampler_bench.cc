@@ -1,0 +1,143 @@
+// What the sampler library costs a renderer: the bookkeeping per pixel (the
+// pre-pass points, the plan from a 3 x 3 or 5 x 5 block of pre-pass values,
+// the main points and the estimate: everything but the integrand's
+// evaluations) at N = 256, 1024 and 4096, on one thread and on two; the
+// table file's size for every space, construction and N; and its load time.
+//
+//   build/bench/sampler_bench                        # sizes, then every benchmark
+//   build/bench/sampler_bench --benchmark_filter=Pixel
+//
+// The tables hold arbitrary valid generators and Owen-Sobol point sets:
+// neither the bookkeeping nor a load depends on which lattice or set a key
+// holds. The pixels are a straight edge's (a direction found, a set read)
+// and a smooth gradient's (none found, the Owen-Sobol fallback), half each.
+#include <alignset/aligned_sampler.h>
+#include <alignset/set_table.h>
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <vector>
+
+#include "core/sampling/owen_sobol.h"
+
+namespace alignset {
+namespace {
+
+TableSection Lattices(uint32_t n, TableSpace space) {
+  TableSection s{n, "lattice", space, {}, {}};
+  for (uint32_t k = 0; k < TableSpaceKeys(space); ++k) {
+    uint32_t g = 1 + (2 * k + 1) % (n - 1);
+    while (std::gcd(g, n) != 1) ++g;
+    s.generators.push_back(g);
+  }
+  return s;
+}
+
+TableSection Points(uint32_t n, TableSpace space) {
+  TableSection s{n, "optimized", space, {}, {}};
+  for (uint32_t k = 0; k < TableSpaceKeys(space); ++k) s.sets.push_back(OwenScrambledSobol(n, k));
+  return s;
+}
+
+// The file's size: header, directory, payload, checksum (the format, checked
+// against Serialize for every table small enough to build here).
+uint64_t FileBytes(uint32_t n, TableSpace space, bool lattice) {
+  const uint64_t keys = TableSpaceKeys(space);
+  return 16 + 20 + (lattice ? 4 * keys : 16 * keys * n) + 4;
+}
+
+void PrintSizes() {
+  std::printf("table file sizes (one section each)\n%-8s %-13s %-8s %14s\n", "N", "space", "construction", "bytes");
+  for (uint32_t n : {256u, 1024u, 4096u}) {
+    for (TableSpace space : {TableSpace::kOneDirection, TableSpace::kOneQuarter, TableSpace::kTwoDirections}) {
+      for (bool lattice : {true, false}) {
+        const uint64_t bytes = FileBytes(n, space, lattice);
+        if (lattice || space != TableSpace::kTwoDirections || n <= 256) {
+          auto t = SetTable::FromSections({lattice ? Lattices(n, space) : Points(n, space)});
+          if (!t.ok() || (*t)->Serialize().size() != bytes) std::printf("size mismatch N=%u\n", n);
+        }
+        std::printf("%-8u %-13s %-8s %14llu\n", n, TableSpaceName(space),
+                    lattice ? "lattice, tent-lattice" : "optimized, net", static_cast<unsigned long long>(bytes));
+      }
+    }
+  }
+  std::fflush(stdout);
+}
+
+// A 16 x 16 image's pre-pass values: left half an edge at 37 degrees through
+// each pixel, right half a smooth gradient.
+struct Frame {
+  AlignedSampler sampler;
+  uint32_t width = 16;
+  std::vector<std::vector<double>> pre;
+  static Frame Make(uint32_t n) {
+    auto table = SetTable::FromSections({Lattices(n, TableSpace::kOneDirection), Lattices(n, TableSpace::kTwoDirections)});
+    AlignedSamplerOptions o;
+    o.n = n;
+    o.image_width = 16;
+    Frame f{*AlignedSampler::Create(*table, o)};
+    f.pre.assign(16 * 16, {});
+    std::vector<Point2> pts(f.sampler.prepass_samples());
+    for (uint32_t y = 0; y < 16; ++y) {
+      for (uint32_t x = 0; x < 16; ++x) {
+        f.sampler.PrepassPoints(x, y, pts);
+        for (const Point2& p : pts) f.pre[y * 16 + x].push_back(Value(x, y, p));
+      }
+    }
+    return f;
+  }
+  static double Value(uint32_t x, uint32_t y, Point2 p) {
+    if (x >= 8) return 0.1 * (x + p.x) + 0.05 * (y + p.y);
+    return std::cos(0.6458) * (p.x - 0.5) + std::sin(0.6458) * (p.y - 0.5) > 0.0 ? 1.0 : 0.0;
+  }
+};
+
+void BM_PixelBookkeeping(benchmark::State& state) {
+  static Frame frames[3] = {Frame::Make(256), Frame::Make(1024), Frame::Make(4096)};
+  const Frame& f = frames[state.range(0) == 256 ? 0 : state.range(0) == 1024 ? 1 : 2];
+  const AlignedSampler& s = f.sampler;
+  AlignedSampler::Scratch scratch;
+  std::vector<Point2> pre(s.prepass_samples()), main(s.n());
+  std::vector<double> values(s.n(), 0.5);
+  std::vector<std::span<const double>> block(9);
+  uint32_t i = static_cast<uint32_t>(state.thread_index()) * 37;
+  for (auto _ : state) {
+    const uint32_t x = 1 + i % 14, y = 1 + (i / 14) % 14;
+    ++i;
+    s.PrepassPoints(x, y, pre);
+    for (int k = 0; k < 9; ++k) block[k] = f.pre[(y + k / 3 - 1) * 16 + (x + k % 3 - 1)];
+    auto plan = s.Plan(x, y, block, scratch);
+    s.MainPoints(*plan, main);
+    benchmark::DoNotOptimize(s.Estimate(*plan, f.pre[y * 16 + x], values));
+    benchmark::DoNotOptimize(main.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pixels/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PixelBookkeeping)->Arg(256)->Arg(1024)->Arg(4096)->Threads(1)->Threads(2)->UseRealTime();
+
+void BM_TableLoad(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  const TableSpace space = static_cast<TableSpace>(state.range(1));
+  const bool lattice = state.range(2) != 0;
+  const std::vector<uint8_t> bytes =
+      (*SetTable::FromSections({lattice ? Lattices(n, space) : Points(n, space)}))->Serialize();
+  for (auto _ : state) benchmark::DoNotOptimize(SetTable::Parse(bytes));
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * bytes.size()));
+}
+BENCHMARK(BM_TableLoad)
+    ->Args({256, 1, 1})->Args({4096, 3, 1})->Args({4096, 1, 0})->Args({4096, 2, 0})->Args({256, 3, 0})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace alignset
+
+int main(int argc, char** argv) {
+  alignset::PrintSizes();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,112 @@
+#pragma once
+
+// A table file: the aligned sets a renderer reads at render time, exported
+// once from a server's cache (`alignset export`) and loaded here with no
+// gRPC, no SQLite and no server. pbrt ships its pmj02bn tables compiled in;
+// a render-farm node ships this file.
+//
+// What it holds: sections, each the canonical keys of one space (the 46
+// whole-degree one-direction keys, the 181 quarter-degree ones, or the 4141
+// pairs) for one N and one construction. A lattice is stored as its
+// generator (4 bytes a key), any other construction as its N points
+// (binary64, bit for bit the cached set). A set for any direction is the
+// canonical one aligned by the swap and mirror that carry the key onto it,
+// as the server aligns it.
+//
+// The file: an 8-byte magic, a format version, the section directory, the
+// payloads, and a CRC-32C of everything before it (little-endian
+// throughout). Load refuses, naming the problem, an empty or truncated file,
+// a wrong magic or version, a checksum mismatch, an N, construction or space
+// out of range, a key count that is not its space's, and a generator or
+// point that cannot be a served set's.
+
+#include <alignset/point_set.h>
+#include <alignset/set_choice.h>
+#include <alignset/status.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace alignset {
+
+// Which canonical keys a section holds.
+enum class TableSpace : uint8_t {
+  kOneDirection = 1,   // the 46 whole-degree keys: a direction served to the nearest degree
+  kOneQuarter = 2,     // the 181 quarter-degree keys: to the nearest quarter degree
+  kTwoDirections = 3,  // the 4141 whole-degree pairs
+};
+// "1dir", "1dir-quarter", "2dir".
+const char* TableSpaceName(TableSpace space);
+// 46, 181 or 4141.
+uint32_t TableSpaceKeys(TableSpace space);
+
+// One section: a space's keys for one N and one construction, in the
+// canonical key order (core/align's CanonicalKeyAt: ascending angle).
+struct TableSection {
+  uint32_t n = 0;
+  std::string construction;  // "lattice", "tent-lattice", "optimized" or "net"
+  TableSpace space = TableSpace::kOneDirection;
+  std::vector<uint32_t> generators;  // a lattice's: one per key
+  std::vector<PointSet> sets;        // any other construction's: one per key, N points each
+};
+
+// A served set, aligned to the pixel's directions.
+struct TableSet {
+  uint32_t n = 0;
+  // A lattice (lattice_generator != 0): the points are the rank-1 lattice of
+  // this generator under the pixel's shift (ShiftedLatticePoint,
+  // <alignset/lattice_points.h>), folded after the shift when `folded`.
+  uint32_t lattice_generator = 0;
+  bool folded = false;
+  // Any other construction: its aligned points, owned by the table (shift
+  // them on the torus, ShiftPoint in <alignset/pixel_shift.h>).
+  const PointSet* points = nullptr;
+};
+
+class SetTable {
+ public:
+  // The file format this library reads and writes.
+  static constexpr uint32_t kFormatVersion = 1;
+
+  // Refused as described above; the message names the file and the problem.
+  static StatusOr<std::shared_ptr<const SetTable>> Load(const std::string& path);
+  static StatusOr<std::shared_ptr<const SetTable>> Parse(std::span<const uint8_t> bytes);
+  // A table made in memory (a renderer that searched its own lattices, a
+  // test); the sections are checked as Parse checks a file's.
+  static StatusOr<std::shared_ptr<const SetTable>> FromSections(std::vector<TableSection> sections);
+
+  // The file's bytes, and the file written whole (a temporary file renamed
+  // into place: a crash never leaves half a table under `path`).
+  std::vector<uint8_t> Serialize() const;
+  Status Save(const std::string& path) const;
+
+  const std::vector<TableSection>& sections() const;
+  // The N with a one-direction section of `construction`, ascending.
+  std::vector<uint32_t> PointCounts(std::string_view construction) const;
+  bool Has(uint32_t n, std::string_view construction, TableSpace space) const;
+
+  // The set a pixel's choice reads, aligned. NOT_FOUND naming what is
+  // missing when the table has no section for it (a two-direction choice
+  // from a table without two-direction keys is the caller's fallback to
+  // decide: AlignedSampler takes the stronger direction's set), and
+  // INVALID_ARGUMENT for a choice out of range.
+  StatusOr<TableSet> Find(uint32_t n, std::string_view construction, const SetChoice& choice) const;
+  // One direction served on the quarter-degree grid (a kOneQuarter section),
+  // or to the nearest whole degree when the table has only whole degrees.
+  StatusOr<TableSet> FindOne(uint32_t n, std::string_view construction, double theta_deg) const;
+
+  ~SetTable();
+  SetTable(const SetTable&) = delete;
+  SetTable& operator=(const SetTable&) = delete;
+
+ private:
+  struct Impl;
+  explicit SetTable(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace alignset

@@ -1,0 +1,254 @@
+#include <alignset/set_table.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "core/align/canonical.h"
+#include "core/optimize/aligned_lattice.h"
+#include "core/optimize/construction.h"
+#include "sampler/table_file.h"
+
+namespace alignset {
+
+const char* TableSpaceName(TableSpace space) {
+  switch (space) {
+    case TableSpace::kOneDirection: return "1dir";
+    case TableSpace::kOneQuarter: return "1dir-quarter";
+    case TableSpace::kTwoDirections: return "2dir";
+  }
+  return "?";
+}
+
+uint32_t TableSpaceKeys(TableSpace space) {
+  switch (space) {
+    case TableSpace::kOneDirection: return static_cast<uint32_t>(CanonicalKeyCount(1));
+    case TableSpace::kOneQuarter: return static_cast<uint32_t>(CanonicalKeyCount(1, AngleGrid::kQuarterDegree));
+    case TableSpace::kTwoDirections: return static_cast<uint32_t>(CanonicalKeyCount(2));
+  }
+  return 0;
+}
+
+namespace {
+
+// Where a served direction (or pair) lives in its space, and the element
+// that aligns the canonical set onto it: the server's mapping
+// (core/align/canonical.h), computed once for every served value.
+struct Served {
+  uint32_t index = 0;
+  AlignOps ops;
+};
+
+// Served whole degrees 0..179 and quarter degrees 0..719 (index = 4 * deg).
+const std::vector<Served>& ServedOne(AngleGrid grid) {
+  static const std::array<std::vector<Served>, 2> tables = [] {
+    std::array<std::vector<Served>, 2> t;
+    for (int g = 0; g < 2; ++g) {
+      const AngleGrid grid = g == 0 ? AngleGrid::kWholeDegree : AngleGrid::kQuarterDegree;
+      const int steps = StepsPerDegree(grid);
+      for (int k = 0; k < 180 * steps; ++k) {
+        const auto c = Canonicalize({static_cast<double>(k) / steps}, grid);
+        t[g].push_back({static_cast<uint32_t>(*CanonicalKeyIndex(c->key, grid)), c->ops});
+      }
+    }
+    return t;
+  }();
+  return tables[grid == AngleGrid::kWholeDegree ? 0 : 1];
+}
+
+// Served pairs (a, b), a < b whole degrees, at a * 180 + b.
+const std::vector<Served>& ServedTwo() {
+  static const std::vector<Served> table = [] {
+    std::vector<Served> t(180 * 180);
+    for (int a = 0; a < 180; ++a) {
+      for (int b = a + 1; b < 180; ++b) {
+        const auto c = Canonicalize({static_cast<double>(a), static_cast<double>(b)});
+        t[static_cast<size_t>(a) * 180 + b] = {static_cast<uint32_t>(*CanonicalKeyIndex(c->key)), c->ops};
+      }
+    }
+    return t;
+  }();
+  return table;
+}
+
+// A section's aligned sets, built on first use (each is N points; a table of
+// optimized two-direction sets would not fit in memory aligned up front).
+class AlignedSets {
+ public:
+  explicit AlignedSets(size_t count) : sets_(count), once_(new std::once_flag[count]) {}
+  const PointSet& Get(size_t slot, const PointSet& canonical, AlignOps ops) const {
+    std::call_once(once_[slot], [&] { sets_[slot] = std::make_unique<PointSet>(Align(canonical, ops)); });
+    return *sets_[slot];
+  }
+
+ private:
+  mutable std::vector<std::unique_ptr<PointSet>> sets_;
+  std::unique_ptr<std::once_flag[]> once_;
+};
+
+}  // namespace
+
+struct SetTable::Impl {
+  std::vector<TableSection> sections;
+  // (N, construction, space) -> the section and, for points, its aligned sets.
+  struct Entry {
+    const TableSection* section = nullptr;
+    const Construction* construction = nullptr;
+    std::unique_ptr<AlignedSets> aligned;
+  };
+  std::map<std::tuple<uint32_t, std::string, int>, Entry> by_key;
+
+  const Entry* Section(uint32_t n, std::string_view construction, TableSpace space) const {
+    auto it = by_key.find({n, std::string(construction), static_cast<int>(space)});
+    return it == by_key.end() ? nullptr : &it->second;
+  }
+
+  TableSet Aligned(const Entry& e, size_t slot, const Served& s) const {
+    TableSet out;
+    out.n = e.section->n;
+    if (e.construction->lattice()) {
+      out.lattice_generator = MapLatticeGenerator(out.n, e.section->generators[s.index], s.ops.swap, s.ops.invert,
+                                                  s.ops.invert_y);
+      out.folded = e.construction->folded();
+    } else {
+      out.points = &e.aligned->Get(slot, e.section->sets[s.index], s.ops);
+    }
+    return out;
+  }
+};
+
+SetTable::SetTable(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+SetTable::~SetTable() = default;
+
+StatusOr<std::shared_ptr<const SetTable>> SetTable::FromSections(std::vector<TableSection> sections) {
+  if (Status s = sampler::CheckSections(sections); !s.ok()) return s;
+  auto impl = std::make_unique<Impl>();
+  impl->sections = std::move(sections);
+  for (const TableSection& s : impl->sections) {
+    Impl::Entry e;
+    e.section = &s;
+    e.construction = FindConstruction(s.construction);
+    if (!e.construction->lattice()) {
+      const size_t slots = s.space == TableSpace::kTwoDirections ? 180 * 180
+                           : s.space == TableSpace::kOneQuarter  ? 720
+                                                                 : 180;
+      e.aligned = std::make_unique<AlignedSets>(slots);
+    }
+    impl->by_key.emplace(std::make_tuple(s.n, s.construction, static_cast<int>(s.space)), std::move(e));
+  }
+  return std::shared_ptr<const SetTable>(new SetTable(std::move(impl)));
+}
+
+StatusOr<std::shared_ptr<const SetTable>> SetTable::Parse(std::span<const uint8_t> bytes) {
+  auto sections = sampler::DecodeTable(bytes);
+  if (!sections.ok()) return sections.status();
+  return FromSections(std::move(sections).value());
+}
+
+StatusOr<std::shared_ptr<const SetTable>> SetTable::Load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return Status::NotFound("table file " + path + ": cannot be opened");
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) return Status::DataLoss("table file " + path + ": read failed");
+  auto table = Parse(bytes);
+  if (!table.ok()) {
+    const Status& s = table.status();
+    const std::string m = "table file " + path + ": " + s.message();
+    return s.code() == Status::Code::kDataLoss ? Status::DataLoss(m) : Status::InvalidArgument(m);
+  }
+  return table;
+}
+
+std::vector<uint8_t> SetTable::Serialize() const { return sampler::EncodeTable(impl_->sections); }
+
+Status SetTable::Save(const std::string& path) const {
+  const std::vector<uint8_t> bytes = Serialize();
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) return Status::InvalidArgument("table file " + path + ": cannot write " + tmp);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      return Status::Internal("table file " + path + ": write failed (disk full?)");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    return Status::Internal("table file " + path + ": cannot rename " + tmp + " into place");
+  }
+  return Status::Ok();
+}
+
+const std::vector<TableSection>& SetTable::sections() const { return impl_->sections; }
+
+std::vector<uint32_t> SetTable::PointCounts(std::string_view construction) const {
+  std::vector<uint32_t> out;
+  for (const TableSection& s : impl_->sections) {
+    if (s.construction == construction && s.space != TableSpace::kTwoDirections &&
+        (out.empty() || out.back() != s.n)) {
+      out.push_back(s.n);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+bool SetTable::Has(uint32_t n, std::string_view construction, TableSpace space) const {
+  return impl_->Section(n, construction, space) != nullptr;
+}
+
+StatusOr<TableSet> SetTable::Find(uint32_t n, std::string_view construction, const SetChoice& choice) const {
+  auto missing = [&](TableSpace space) {
+    return Status::NotFound("the table has no " + std::string(construction) + " sets of N = " + std::to_string(n) +
+                            " for " + TableSpaceName(space) + " (export them: alignset export --n " +
+                            std::to_string(n) + " --construction " + std::string(construction) + ")");
+  };
+  switch (choice.kind) {
+    case SetChoice::Kind::kFallback:
+      return Status::InvalidArgument("a fallback choice reads no set");
+    case SetChoice::Kind::kOne: {
+      if (choice.a < 0 || choice.a >= 180) return Status::InvalidArgument("served degree out of [0, 180)");
+      if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneDirection)) {
+        return impl_->Aligned(*e, static_cast<size_t>(choice.a), ServedOne(AngleGrid::kWholeDegree)[choice.a]);
+      }
+      // A quarter-degree section holds every whole degree too.
+      if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneQuarter)) {
+        const size_t q = static_cast<size_t>(choice.a) * 4;
+        return impl_->Aligned(*e, q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+      }
+      return missing(TableSpace::kOneDirection);
+    }
+    case SetChoice::Kind::kTwo: {
+      if (choice.a < 0 || choice.b >= 180 || choice.a >= choice.b) {
+        return Status::InvalidArgument("served pair out of range (0 <= a < b < 180)");
+      }
+      const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kTwoDirections);
+      if (e == nullptr) return missing(TableSpace::kTwoDirections);
+      const size_t slot = static_cast<size_t>(choice.a) * 180 + static_cast<size_t>(choice.b);
+      return impl_->Aligned(*e, slot, ServedTwo()[slot]);
+    }
+  }
+  return Status::InvalidArgument("unknown choice");
+}
+
+StatusOr<TableSet> SetTable::FindOne(uint32_t n, std::string_view construction, double theta_deg) const {
+  if (!std::isfinite(theta_deg)) return Status::InvalidArgument("direction is not a finite number");
+  if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneQuarter)) {
+    double t = std::fmod(theta_deg, 180.0);
+    if (t < 0) t += 180.0;
+    const size_t q = static_cast<size_t>(std::llround(t * 4.0)) % 720;
+    return impl_->Aligned(*e, q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+  }
+  return Find(n, construction, {SetChoice::Kind::kOne, ServedDegree(theta_deg), 0});
+}
+
+}  // namespace alignset
