@@ -7,6 +7,10 @@
 //   build/bench/sampler_bench                        # sizes, then every benchmark
 //   build/bench/sampler_bench --benchmark_filter=Pixel
 //
+// allocs/pixel counts the allocations of the whole process while a pixel's
+// calls run (the Scratch's buffers grow during the first pixels only; what
+// remains is the core's edge-line fit).
+//
 // The tables hold arbitrary valid generators and Owen-Sobol point sets:
 // neither the bookkeeping nor a load depends on which lattice or set a key
 // holds. The pixels are a straight edge's (a direction found, a set read)
@@ -15,10 +19,23 @@
 #include <alignset/set_table.h>
 #include <benchmark/benchmark.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <new>
 #include <numeric>
 #include <vector>
+
+// Every allocation of the process, counted: the allocations a pixel makes.
+static std::atomic<uint64_t> g_allocations{0};
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 #include "core/sampling/owen_sobol.h"
 
@@ -103,6 +120,7 @@ void BM_PixelBookkeeping(benchmark::State& state) {
   std::vector<double> values(s.n(), 0.5);
   std::vector<std::span<const double>> block(9);
   uint32_t i = static_cast<uint32_t>(state.thread_index()) * 37;
+  const uint64_t allocations_before = g_allocations.load();
   for (auto _ : state) {
     const uint32_t x = 1 + i % 14, y = 1 + (i / 14) % 14;
     ++i;
@@ -114,6 +132,11 @@ void BM_PixelBookkeeping(benchmark::State& state) {
     benchmark::DoNotOptimize(main.data());
   }
   state.SetItemsProcessed(state.iterations());
+  // The process's count is shared: read on one thread only.
+  if (state.threads() == 1) {
+    state.counters["allocs/pixel"] =
+        static_cast<double>(g_allocations.load() - allocations_before) / static_cast<double>(state.iterations());
+  }
   state.counters["pixels/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PixelBookkeeping)->Arg(256)->Arg(1024)->Arg(4096)->Threads(1)->Threads(2)->UseRealTime();

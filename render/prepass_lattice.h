@@ -6,7 +6,8 @@
 
 namespace alignset::render {
 
-// The lattice pre-pass (suffix "l" on a scattered pre-pass, `nedges64s2l`):
+// The lattice pre-pass (suffix "l" on a scattered pre-pass, `nedges64s2l`),
+// the sampler library's (PrepassLatticePointsInto, <alignset/prepass_fit.h>):
 // the pixel's M pre-pass samples are the M-point rank-1 lattice of
 // generator Rank1Generator(M) (core/sampling/rank1_lattice.h) under a
 // uniform shift drawn from the pixel's seed, instead of M Owen-scrambled

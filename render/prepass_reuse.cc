@@ -1,17 +1,16 @@
 #include "render/prepass_reuse.h"
 
-#include <algorithm>
-#include <cmath>
+#include <alignset/aligned_sampler.h>
+
+#include <vector>
 
 #include "core/sampling/owen_sobol.h"
 
 namespace alignset::render {
 
-double PrepassWeight(uint32_t prepass_samples, uint32_t n) {
-  if (prepass_samples == 0) return 0.0;
-  const double p = std::pow(static_cast<double>(prepass_samples), 1.5);
-  return p / (p + 2.0 * std::pow(static_cast<double>(n), 1.5));
-}
+// The weights are the sampler library's (<alignset/aligned_sampler.h>): one
+// home for the rule.
+double PrepassWeight(uint32_t prepass_samples, uint32_t n) { return ::alignset::PrepassWeight(prepass_samples, n); }
 
 double WithPrepass(const PixelDirection& d, double estimate, uint32_t n) {
   if (d.prepass_samples == 0) return estimate;
@@ -20,26 +19,12 @@ double WithPrepass(const PixelDirection& d, double estimate, uint32_t n) {
 }
 
 double ContinuedPrepass(const PixelIntegrand& f, const PixelDirection& d, uint32_t n) {
-  const uint32_t p = d.prepass_samples, total = p + n;
-  const PointSet points = OwenScrambledSobol(total, d.prepass_seed);
-  // The aligned power-of-two blocks of `total`, largest first; the pre-pass
-  // must lie inside the first (its values are known by their mean only).
-  std::vector<uint32_t> blocks;
-  for (uint32_t bit = 1u << 31; bit != 0; bit >>= 1) {
-    if (total & bit) blocks.push_back(bit);
-  }
-  if (p > blocks.front()) blocks.assign(1, total);  // a plain mean of every point
-  double estimate = 0.0, weights = 0.0;
-  uint32_t begin = 0;
-  for (uint32_t size : blocks) {
-    double sum = begin == 0 ? static_cast<double>(p) * d.prepass_mean : 0.0;
-    for (uint32_t k = std::max(begin, p); k < begin + size; ++k) sum += f.Eval({points[k].x, points[k].y});
-    const double w = std::pow(static_cast<double>(size), 3.0);
-    estimate += w * sum / size;
-    weights += w;
-    begin += size;
-  }
-  return estimate / weights;
+  const uint32_t p = d.prepass_samples;
+  const PointSet points = OwenScrambledSobol(p + n, d.prepass_seed);
+  std::vector<double> values;
+  values.reserve(n);
+  for (uint32_t k = p; k < p + n; ++k) values.push_back(f.Eval({points[k].x, points[k].y}));
+  return ContinuedEstimate(d.prepass_mean, p, values);
 }
 
 namespace {

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <cstdlib>
 
+#include <alignset/prepass_fit.h>
+
 #include "core/analysis/direction_estimate.h"
 #include "core/analysis/edge_line_fit.h"
 #include "core/sampling/owen_sobol.h"
@@ -124,18 +126,7 @@ namespace {
 // better (bench/results/render_stack_radius.md). It holds for every
 // edge-line fit here, the pixel's own (edgesM, and nedgesM's fallback)
 // included; edgesM alone was not re-measured with it.
-constexpr double kPrepassSecondLineShare = 0.15;
-
-// The stacked fit draws 24 candidate directions instead of the fit's 96: a
-// block of 9 or 25 pixels gives each candidate ample support, and the
-// refinement places the winner. Aligned lattices' edge MSE on shadow against
-// 96 (seeds 1-6 at 256 + 64, 1-3 at 1024 + 256 and 4096 + 256): -0.6%
-// (0.984-1.003 per seed), +0.5% (1.004-1.007), +0.3% (0.988-1.017); 48 gave
-// +0.1% and +0.6%, so what moves is which of two near-equal lines wins, not
-// a trend. The fit for 16384 pixels on two threads: 5.1 -> 2.2 s (M = 64,
-// 5 x 5), 13-16 -> 4.6-6.0 s (M = 256, 5 x 5), 5.9-6.4 -> 2.8-3.4 s
-// (M = 256, 3 x 3).
-constexpr int kStackedCandidates = 24;
+constexpr double kPrepassSecondLineShare = 0.15;  // the sampler library's pooled fit takes the same
 
 PixelDirection FromEstimate(const DirectionEstimate& e, int min_confidence_pct) {
   PixelDirection d;
@@ -159,8 +150,6 @@ class SpectralEstimator : public DirectionEstimator {
     options_.second = true;
     lines_.second = true;
     lines_.second_min_share = kPrepassSecondLineShare;
-    stacked_ = lines_;
-    stacked_.candidates = kStackedCandidates;
   }
   std::string name() const override {
     const bool lines =
@@ -185,94 +174,76 @@ class SpectralEstimator : public DirectionEstimator {
     if (p_.kind != Prepass::Kind::kPooledEdgeLines) {
       return DirectionEstimator::EstimateScene(scene, seed, threads);
     }
-    // Row by row, keeping the pre-passes of the rows the fit reads only
-    // (y - R ... y + R), so that memory stays a few rows of M samples
-    // however large the image: rows[k] holds row y - R + k, empty beyond
-    // the image.
-    constexpr double kMargin = 0.5, kAgreeDeg = 8.0;
+    // The pixel and its neighbours, as the sampler library fits them
+    // (<alignset/prepass_fit.h>): on pixel footprints, the samples within
+    // half a pixel and lines that cross the pixel; on a domain every pixel
+    // shares (the shadow's light), the neighbours' patches stacked on the
+    // pixel's, one line each, all parallel. Row by row, keeping the
+    // pre-passes of the rows a fit reads only (y - R ... y + R), so that
+    // memory stays a few rows of M values however large the image: rows[k]
+    // holds row y - R + k, empty beyond the image.
     const bool shared = scene.domain() == PixelDomain::kShared;
-    const int radius = shared ? p_.stack_radius : 1;
-    const int side = 2 * radius + 1;
+    PrepassFitOptions fo;
+    fo.domain = shared ? ::alignset::PixelDomain::kShared : ::alignset::PixelDomain::kFootprint;
+    fo.image_width = static_cast<uint32_t>(scene.width());
+    fo.seed = seed;
+    fo.prepass_samples = static_cast<uint32_t>(p_.count);
+    fo.lattice_points = p_.lattice;
+    fo.stack_radius = p_.stack_radius;
+    fo.min_confidence_pct = p_.min_confidence_pct;
+    auto made = PrepassFit::Create(fo);
+    if (!made.ok()) {  // ParsePrepass admits no such pre-pass
+      refused_.fetch_add(static_cast<int64_t>(scene.size()), std::memory_order_relaxed);
+      return std::vector<PixelDirection>(scene.size());
+    }
+    const PrepassFit fit = *made;
+    const int radius = fit.block_radius(), side = fit.block_side();
     const int w = scene.width(), hgt = scene.height();
     std::vector<PixelDirection> out(scene.size());
-    std::vector<std::vector<SampledPatch>> rows(static_cast<size_t>(side));
-    // Stacked, each pixel's crossings are found once, not once per block
-    // it is in (25 times at R = 2); samples == 0 where that failed.
-    std::vector<std::vector<PatchCrossings>> crossing_rows(static_cast<size_t>(side));
-    // Every pixel's own pre-pass and its own fit.
+    std::vector<std::vector<std::vector<double>>> rows(static_cast<size_t>(side));
     auto sample_row = [&](int y, size_t k) {
-      std::vector<SampledPatch>& row = rows[k];
-      row.assign(static_cast<size_t>(w), SampledPatch{});
-      if (shared) crossing_rows[k].assign(static_cast<size_t>(w), PatchCrossings{});
+      std::vector<std::vector<double>>& row = rows[k];
+      row.assign(static_cast<size_t>(w), {});
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
-        const size_t i = static_cast<size_t>(y) * w + x;
-        const uint64_t h = HashCombine(seed, i);
-        row[x] = Sample(scene.Pixel(i), h);
-        if (!shared) {
-          out[i] = Finish(Fit(row[x]), Mean(row[x].values), h);
-          return;
-        }
-        // The pixel's own fit and the stacks read the same crossings.
-        StatusOr<PatchCrossings> c = FindCrossings(row[x], lines_);
-        out[i] = Finish(c.ok() ? EstimateEdgeLines(*c, lines_) : StatusOr<DirectionEstimate>(c.status()),
-                        Mean(row[x].values), h);
-        if (c.ok()) crossing_rows[k][x] = std::move(*c);
+        const PixelIntegrand& f = scene.Pixel(static_cast<size_t>(y) * w + x);
+        PointSet points(fit.prepass_samples());
+        fit.PrepassPoints(static_cast<uint32_t>(x), static_cast<uint32_t>(y), points);
+        row[x].reserve(points.size());
+        for (const Point2& q : points) row[x].push_back(f.Eval({q.x, q.y}));
       });
     };
     for (int k = radius; k < side; ++k) {
       if (k - radius < hgt) sample_row(k - radius, static_cast<size_t>(k));
     }
     for (int y = 0; y < hgt; ++y) {
-      // The pixel and its neighbours (core/analysis/edge_line_fit.h): on
-      // pixel footprints, the samples within half a pixel and lines that
-      // cross the pixel; on a domain every pixel shares (the shadow's
-      // light), the neighbours' patches stacked on the pixel's, one line
-      // each, all parallel (read as footprints, their edges did not line
-      // up, and pooling had left the shadow's directions where the pixel's
-      // own 64 samples put them: a median 2.2 degrees off).
       ParallelFor(static_cast<size_t>(w), threads, [&](size_t x) {
+        thread_local PrepassFit::Scratch scratch;
         const size_t i = static_cast<size_t>(y) * w + x;
-        // Stacked, the block's crossings; on footprints (side is 3 there),
-        // the 3 x 3 patches.
-        std::vector<const PatchCrossings*> crossings(shared ? static_cast<size_t>(side * side) : 0, nullptr);
-        std::array<const SampledPatch*, 9> nine{};
+        std::vector<std::span<const double>> block(static_cast<size_t>(side * side));
         for (int k = 0; k < side * side; ++k) {
           const size_t r = static_cast<size_t>(k / side);
           const int u = static_cast<int>(x) + k % side - radius;
-          if (rows[r].empty() || u < 0 || u >= w) continue;
-          if (!shared) {
-            nine[static_cast<size_t>(k)] = &rows[r][u];
-          } else if (crossing_rows[r][u].samples > 0) {
-            crossings[static_cast<size_t>(k)] = &crossing_rows[r][u];
-          }
+          if (!rows[r].empty() && u >= 0 && u < w) block[static_cast<size_t>(k)] = rows[r][static_cast<size_t>(u)];
         }
-        const StatusOr<DirectionEstimate> e = shared ? EstimateEdgeLinesStacked(crossings, stacked_)
-                                                     : EstimateEdgeLinesPooled(nine, kMargin, lines_);
-        if (!e.ok()) {
+        auto e = fit.Fit(static_cast<uint32_t>(x), static_cast<uint32_t>(y), block, scratch);
+        PixelDirection d;
+        if (e.ok()) {
+          refused_.fetch_add(e->own_refused + e->pooled_refused, std::memory_order_relaxed);
+          d.kind = static_cast<PixelDirection::Kind>(e->directions);
+          d.theta1 = e->theta1_deg;
+          d.theta2 = e->theta2_deg;
+          d.confidence = e->confidence;
+        } else {
           refused_.fetch_add(1, std::memory_order_relaxed);
-          return;
         }
-        PixelDirection d = FromEstimate(*e, p_.min_confidence_pct);
-        if (d.kind == PixelDirection::Kind::kNone) return;  // the pixel's own fit stands
-        // On footprints, where the two disagree the pixel's own fit stands
-        // (an unchecked pooled line made the shadow's directions worse when
-        // its pixels were read as footprints). Stacked, the pooled fit wins:
-        // on the shadow's two-edge pixels (seed 1, M = 64) the pixel's own
-        // fit was 15 degrees off (median) where the two disagreed, and
-        // without the check the shadow's edge MSE at N = 256 fell by 0-5% on
-        // each of scene seeds 1-6.
-        if (!shared && out[i].kind != PixelDirection::Kind::kNone &&
-            AxialDistanceDeg(d.theta1, out[i].theta1) > kAgreeDeg) {
-          return;
-        }
-        out[i] = WithPrepassOf(d, out[i]);
+        d.prepass_mean = Mean(rows[static_cast<size_t>(radius)][x]);
+        d.prepass_samples = fit.prepass_samples();
+        d.prepass_seed = fit.PrepassSeed(static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+        d.prepass_lattice = p_.lattice;
+        out[i] = d;
       });
-      for (size_t k = 0; k + 1 < static_cast<size_t>(side); ++k) {
-        rows[k] = std::move(rows[k + 1]);
-        crossing_rows[k] = std::move(crossing_rows[k + 1]);
-      }
+      for (size_t k = 0; k + 1 < static_cast<size_t>(side); ++k) rows[k] = std::move(rows[k + 1]);
       rows[static_cast<size_t>(side - 1)] = {};
-      crossing_rows[static_cast<size_t>(side - 1)] = {};
       if (y + radius + 1 < hgt) sample_row(y + radius + 1, static_cast<size_t>(side - 1));
     }
     return out;
@@ -339,7 +310,6 @@ class SpectralEstimator : public DirectionEstimator {
   Prepass p_;
   DirectionOptions options_;
   EdgeLineOptions lines_;
-  EdgeLineOptions stacked_;  // lines_ with kStackedCandidates
   mutable std::atomic<int64_t> refused_{0};
 };
 

@@ -18,7 +18,7 @@ BUILD_PACKAGES=(
   libssl-dev libmicrohttpd-dev
 )
 # GoogleTest and Google Benchmark, the tools the tests drive (sqlite3, openssl for the TLS
-# test), Python with the packages of the Python client, its test, the plots and the
+# test), Python with the packages of the Python client (pybind11 for its sampler module), its test, the plots and the
 # manifest check, and the daemon-less container build of deploy/test-container.sh.
 TEST_PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev

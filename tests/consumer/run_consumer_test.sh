@@ -20,7 +20,7 @@ fail() { echo "run_consumer_test: $*" >&2; exit 1; }
 PREFIX="$WORK/prefix"
 cmake --install "$BUILD" --prefix "$PREFIX" > "$WORK/install.log" || { cat "$WORK/install.log"; fail "install failed"; }
 for f in include/alignset/client.h include/alignset/status.h include/alignset/point_set.h \
-         include/alignset/version.h include/alignset/set_table.h include/alignset/aligned_sampler.h \
+         include/alignset/version.h include/alignset/set_table.h include/alignset/aligned_sampler.h include/alignset/prepass_fit.h \
          include/alignset/set_choice.h bin/alignset bin/alignset-server; do
   [ -e "$PREFIX/$f" ] || fail "the install lacks $f"
 done

@@ -361,5 +361,47 @@ TEST_F(AlignedSamplerTest, BadInputIsRefusedWithAMessage) {
   EXPECT_NE(s.Plan(1, 1, nine, scratch).status().message().find("centre"), std::string::npos);
 }
 
+// A Scratch keeps the crossings of the pixels it read last: a raster walk
+// with one Scratch fits every pixel exactly as a fresh Scratch would, at
+// every stack radius (the largest block, 9 x 9, reads 81 pixels a fit).
+TEST(PrepassFitTest, AScratchReusedOverAWalkFitsAsAFreshOneDoes) {
+  for (int radius : {1, 2, 3, 4}) {
+    SCOPED_TRACE(radius);
+    PrepassFitOptions o;
+    o.domain = PixelDomain::kShared;
+    o.image_width = 14;
+    o.prepass_samples = 64;
+    o.stack_radius = radius;
+    auto fit = PrepassFit::Create(o);
+    ASSERT_TRUE(fit.ok());
+    const int side = fit->block_side();
+    std::vector<std::vector<double>> pre(14 * 14);
+    std::vector<Point2> pts(64);
+    for (uint32_t y = 0; y < 14; ++y) {
+      for (uint32_t x = 0; x < 14; ++x) {
+        fit->PrepassPoints(x, y, pts);
+        for (const Point2& p : pts) pre[y * 14 + x].push_back(p.x * 0.8 + p.y * 0.6 > 0.5 + 0.02 * x ? 1.0 : 0.0);
+      }
+    }
+    PrepassFit::Scratch reused;
+    for (uint32_t y = 0; y < 14; ++y) {
+      for (uint32_t x = 0; x < 14; ++x) {
+        std::vector<std::span<const double>> block(static_cast<size_t>(side * side));
+        for (int k = 0; k < side * side; ++k) {
+          const int bx = static_cast<int>(x) + k % side - radius, by = static_cast<int>(y) + k / side - radius;
+          if (bx >= 0 && by >= 0 && bx < 14 && by < 14) block[k] = pre[by * 14 + bx];
+        }
+        PrepassFit::Scratch fresh;
+        auto a = fit->Fit(x, y, block, reused);
+        auto b = fit->Fit(x, y, block, fresh);
+        ASSERT_TRUE(a.ok() && b.ok());
+        ASSERT_EQ(a->directions, b->directions) << x << ", " << y;
+        ASSERT_EQ(a->theta1_deg, b->theta1_deg) << x << ", " << y;
+        ASSERT_EQ(a->theta2_deg, b->theta2_deg) << x << ", " << y;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace alignset

@@ -32,6 +32,7 @@
 // Scratch has grown to its size (the first few pixels).
 
 #include <alignset/point_set.h>
+#include <alignset/prepass_fit.h>
 #include <alignset/set_choice.h>
 #include <alignset/set_table.h>
 #include <alignset/status.h>
@@ -42,15 +43,6 @@
 #include <string>
 
 namespace alignset {
-
-// How neighbouring pixels' integration domains lie to each other.
-//  - kFootprint: each pixel integrates its own square of the image plane (a
-//    silhouette's antialiasing): a neighbour's samples lie beside the
-//    pixel's, and the fit reads those within half a pixel.
-//  - kShared: every pixel integrates over the same square (a pixel's 2-D
-//    light sample on one area light): a neighbour's samples are stacked on
-//    the pixel's, and the fit reads the block's parallel edges.
-enum class PixelDomain { kFootprint, kShared };
 
 // How the pre-pass enters the estimate.
 //  - kUnbiased: w * mean(pre-pass) + (1 - w) * mean(main) on every pixel,
@@ -66,6 +58,16 @@ enum class PixelDomain { kFootprint, kShared };
 //    the pre-pass's draw carries a small selection bias (2-8% of its RMS
 //    error, measured; docs/rendering.md).
 enum class PrepassReuse { kUnbiased, kContinue };
+
+// The pre-pass's weight beside N main points under kUnbiased (and on every
+// pixel with a set under kContinue): M^1.5 / (M^1.5 + 2 N^1.5).
+double PrepassWeight(uint32_t prepass_samples, uint32_t n);
+// kContinue's estimate of a direction-less pixel after an Owen-Sobol
+// pre-pass: the pre-pass's M values (by their mean) and the next points of
+// its sequence, each aligned power-of-two block of the M + N weighted by its
+// size cubed (the n^-3 of a smooth pixel; a plain mean of all when the
+// pre-pass spans blocks).
+double ContinuedEstimate(double prepass_mean, uint32_t prepass_samples, std::span<const double> continued_values);
 
 struct AlignedSamplerOptions {
   uint32_t n = 256;                       // main points per pixel: an N of the table
@@ -111,19 +113,15 @@ class AlignedSampler {
   // One per thread: the buffers a plan needs, and counts of what happened.
   class Scratch {
    public:
-    Scratch();
-    ~Scratch();
-    Scratch(Scratch&&) noexcept;
-    Scratch& operator=(Scratch&&) noexcept;
     struct Stats {
       uint64_t pixels = 0, with_direction = 0, two_directions = 0, pair_fell_back = 0, fit_refused = 0;
     };
-    const Stats& stats() const;
+    const Stats& stats() const { return stats_; }
 
    private:
     friend class AlignedSampler;
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    PrepassFit::Scratch fit_;
+    Stats stats_;
   };
 
   // INVALID_ARGUMENT for options out of range, NOT_FOUND when the table has
@@ -134,10 +132,12 @@ class AlignedSampler {
 
   const AlignedSamplerOptions& options() const { return options_; }
   uint32_t n() const { return options_.n; }
-  uint32_t prepass_samples() const { return prepass_; }
-  int block_radius() const { return radius_; }
-  int block_side() const { return 2 * radius_ + 1; }
-  bool lattice_prepass() const { return lattice_prepass_; }
+  uint32_t prepass_samples() const { return fit_.prepass_samples(); }
+  int block_radius() const { return fit_.block_radius(); }
+  int block_side() const { return fit_.block_side(); }
+  bool lattice_prepass() const { return fit_.options().lattice_points; }
+  // The direction fit this sampler plans with.
+  const PrepassFit& fit() const { return fit_; }
 
   // The pixel's pre-pass points (out.size() == prepass_samples()).
   void PrepassPoints(uint32_t x, uint32_t y, std::span<Point2> out) const;
@@ -158,9 +158,7 @@ class AlignedSampler {
  private:
   std::shared_ptr<const SetTable> table_;
   AlignedSamplerOptions options_;
-  uint32_t prepass_ = 0;
-  int radius_ = 1;
-  bool lattice_prepass_ = true;
+  PrepassFit fit_;
   double weight_ = 0.0;
 };
 
