@@ -102,16 +102,17 @@ StatusOr<PixelPlan> AlignedSampler::Plan(uint32_t x, uint32_t y, std::span<const
     return plan;
   }
   ++stats.with_direction;
-  auto set = table_->Find(options_.n, options_.construction, plan.choice);
-  if (!set.ok() && plan.choice.kind == SetChoice::Kind::kTwo && set.status().code() == Status::Code::kNotFound) {
-    // A table without this pair: the stronger edge's set (documented).
+  if (plan.choice.kind == SetChoice::Kind::kTwo &&
+      !table_->Has(options_.n, options_.construction, TableSpace::kTwoDirections)) {
+    // A table without two-direction sets: the stronger edge's set
+    // (documented; asked before any lookup, so no error is built).
     AlignedPolicy one = policy;
     one.two_directions = false;
     plan.choice = ChooseSet({d.directions, d.theta1_deg, d.theta2_deg}, one);
     plan.pair_fell_back = true;
     ++stats.pair_fell_back;
-    set = table_->Find(options_.n, options_.construction, plan.choice);
   }
+  auto set = table_->Find(options_.n, options_.construction, plan.choice);
   if (!set.ok()) return set.status();
   if (plan.choice.kind == SetChoice::Kind::kTwo) ++stats.two_directions;
   plan.set = *set;

@@ -33,6 +33,7 @@ constexpr double kAgreeDeg = 8.0;
 // Crossings kept per Scratch: more than the largest block (9 x 9) twice over,
 // so that a walk one pixel on finds most of its block again.
 constexpr size_t kCachedCrossings = 192;
+constexpr size_t kPairsPerSample = 4;
 
 Point2 HashShift(uint64_t h) {
   return {static_cast<double>(h >> 11) * 0x1.0p-53, static_cast<double>(Mix64(h) >> 11) * 0x1.0p-53};
@@ -71,6 +72,8 @@ FittedDirections FromEstimate(const DirectionEstimate& e, int min_confidence_pct
 }  // namespace
 
 struct PrepassFit::Scratch::Impl {
+  EdgeLineScratch lines;              // the core fit's working memory
+  DirectionEstimate own, pooled;      // its results, rewritten in place
   std::vector<SampledPatch> patches;  // the block's pre-passes
   std::vector<const PatchCrossings*> stacked;
   // Recently found crossings, by the pixel's pre-pass seed, count and a hash
@@ -85,6 +88,7 @@ struct PrepassFit::Scratch::Impl {
   std::vector<Cached> cache;
   size_t next = 0;
   uint64_t fits = 0;
+  uint32_t reserved_for = 0;  // the M the buffers were grown for
 };
 
 PrepassFit::Scratch::Scratch() : impl_(std::make_unique<Impl>()) {}
@@ -151,6 +155,28 @@ StatusOr<FittedDirections> PrepassFit::Fit(uint32_t x, uint32_t y, std::span<con
   if (block[centre].empty()) return Status::InvalidArgument("the block's centre (the pixel itself) has no values");
   Scratch::Impl& w = *scratch.impl_;
   if (w.patches.size() != cells) w.patches.resize(cells);
+  // The buffers grown once for the largest block of this M: a patch's
+  // neighbouring pairs that jump, at most kPairsPerSample a sample (the pairs
+  // within the fit's 1.6 spacings of a stratified set), so that no pixel
+  // allocates afterwards.
+  const size_t max_crossings = kPairsPerSample * m;
+  if (w.reserved_for < m) {
+    const size_t most = 81;  // a 9 x 9 block
+    w.lines.Reserve(9 * m, most * max_crossings, most);
+    for (SampledPatch& p : w.patches) {
+      p.points.reserve(m);
+      p.values.reserve(m);
+    }
+    w.patches.reserve(most);
+    w.stacked.reserve(most);
+    // A lobe's reason ("no straight edge: 12 of 140 crossings on one line")
+    // is written into the string the estimate already holds.
+    for (DirectionEstimate* e : {&w.own, &w.pooled}) {
+      e->first.reason.reserve(96);
+      e->second.reason.reserve(96);
+    }
+    w.reserved_for = m;
+  }
   static const EdgeLineOptions lines = LineOptions(), stacked_lines = StackedOptions();
   const bool shared = options_.domain == PixelDomain::kShared;
 
@@ -178,17 +204,15 @@ StatusOr<FittedDirections> PrepassFit::Fit(uint32_t x, uint32_t y, std::span<con
         fill(k);
       }
     }
-    auto e = EstimateEdgeLines(w.patches[centre], lines);
-    if (e.ok()) {
-      own = FromEstimate(*e, options_.min_confidence_pct);
+    if (EstimateEdgeLines(w.patches[centre], lines, w.lines, &w.own).ok()) {
+      own = FromEstimate(w.own, options_.min_confidence_pct);
     } else {
       out.own_refused = true;
     }
     std::array<const SampledPatch*, 9> nine{};
     for (size_t k = 0; k < 9; ++k) nine[k] = block[k].empty() ? nullptr : &w.patches[k];
-    auto p = EstimateEdgeLinesPooled(nine, kPooledMargin, lines);
-    if (p.ok()) {
-      pooled = FromEstimate(*p, options_.min_confidence_pct);
+    if (EstimateEdgeLinesPooled(nine, kPooledMargin, lines, w.lines, &w.pooled).ok()) {
+      pooled = FromEstimate(w.pooled, options_.min_confidence_pct);
       pooled_ok = true;
     } else {
       out.pooled_refused = true;
@@ -215,12 +239,11 @@ StatusOr<FittedDirections> PrepassFit::Fit(uint32_t x, uint32_t y, std::span<con
         while (w.cache[w.next].fit == call) w.next = (w.next + 1) % w.cache.size();
         hit = &w.cache[w.next];
         w.next = (w.next + 1) % w.cache.size();
-        auto c = FindCrossings(w.patches[k], lines);
         hit->seed = seed;
         hit->values = values;
         hit->count = m;
-        hit->ok = c.ok();
-        if (c.ok()) hit->crossings = std::move(*c);
+        hit->crossings.midpoints.reserve(max_crossings);
+        hit->ok = FindCrossings(w.patches[k], lines, w.lines, &hit->crossings).ok();
       }
       hit->fit = call;
       if (hit->ok) {
@@ -230,16 +253,14 @@ StatusOr<FittedDirections> PrepassFit::Fit(uint32_t x, uint32_t y, std::span<con
       }
     }
     if (w.stacked[centre] != nullptr) {
-      auto e = EstimateEdgeLines(*w.stacked[centre], lines);
-      if (e.ok()) {
-        own = FromEstimate(*e, options_.min_confidence_pct);
+      if (EstimateEdgeLines(*w.stacked[centre], lines, w.lines, &w.own).ok()) {
+        own = FromEstimate(w.own, options_.min_confidence_pct);
       } else {
         out.own_refused = true;
       }
     }
-    auto p = EstimateEdgeLinesStacked(w.stacked, stacked_lines);
-    if (p.ok()) {
-      pooled = FromEstimate(*p, options_.min_confidence_pct);
+    if (EstimateEdgeLinesStacked(w.stacked, stacked_lines, w.lines, &w.pooled).ok()) {
+      pooled = FromEstimate(w.pooled, options_.min_confidence_pct);
       pooled_ok = true;
     } else {
       out.pooled_refused = true;

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -21,13 +21,12 @@ double Distance(const Line& l, const Point2& p) {
   return std::fabs((p.x - l.cx) * l.nx + (p.y - l.cy) * l.ny);
 }
 
-std::vector<size_t> Inliers(const Line& l, const std::vector<Point2>& m,
-                            const std::vector<size_t>& among, double band) {
-  std::vector<size_t> in;
+void Inliers(const Line& l, const std::vector<Point2>& m, const std::vector<size_t>& among, double band,
+             std::vector<size_t>* in) {
+  in->clear();
   for (size_t i : among) {
-    if (Distance(l, m[i]) <= band) in.push_back(i);
+    if (Distance(l, m[i]) <= band) in->push_back(i);
   }
-  return in;
 }
 
 // Total least squares: through the centroid, normal along the covariance's
@@ -73,20 +72,37 @@ struct Found {
   bool ok = false;
   Line line;
   std::vector<size_t> inliers;
+  void Clear() {
+    ok = false;
+    line = Line{};
+    inliers.clear();
+  }
+};
+
+// The buffers every step below reuses (EdgeLineScratch::Impl holds one).
+struct Work {
+  std::vector<uint32_t> cell_start, cell_fill, cell_order;
+  std::vector<int> cell_of;
+  std::vector<size_t> all, rest, off, near, anchors, candidate;
+  std::vector<char> flags;
+  Found first, second, refit;
+  std::vector<std::vector<size_t>> by_patch;
+  std::vector<double> cx, cy, count;
 };
 
 // The best of the candidate lines through two crossings of `among`, refined.
-Found BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, double band,
-               const EdgeLineOptions& o, uint64_t seed) {
-  Found best;
-  if (among.size() < 2) return best;
+void BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, double band, const EdgeLineOptions& o,
+              uint64_t seed, Work& w, Found* best) {
+  best->Clear();
+  if (among.size() < 2) return;
   // With a focus box, a line must rest on the box's own evidence: one of its
   // two crossings lies in the box, and so do at least two of its inliers.
-  std::vector<size_t> anchors;
+  std::vector<size_t>& anchors = w.anchors;
+  anchors.clear();
   for (size_t i : among) {
     if (InFocus(m[i], o)) anchors.push_back(i);
   }
-  if (anchors.size() < 2) return best;
+  if (anchors.size() < 2) return;
   // Long baselines first (a third of the patch: accurate candidates); an
   // edge that only clips a corner has none, and gets short ones.
   for (double baseline : {1.0 / 3.0, 4.0 * band}) {
@@ -99,49 +115,68 @@ Found BestLine(const std::vector<Point2>& m, const std::vector<size_t>& among, d
       const Line l{m[a].x, m[a].y, -dy / len, dx / len};
       if (!Crosses(l, o)) continue;
       ++tried;
-      std::vector<size_t> in = Inliers(l, m, among, band);
-      if (in.size() > best.inliers.size()) best = {true, l, std::move(in)};
+      Inliers(l, m, among, band, &w.candidate);
+      if (w.candidate.size() > best->inliers.size()) {
+        best->ok = true;
+        best->line = l;
+        std::swap(best->inliers, w.candidate);
+      }
     }
-    if (best.ok) break;
+    if (best->ok) break;
   }
-  if (!best.ok) return best;
-  for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
-    const Line l = FitLine(m, best.inliers);
-    std::vector<size_t> in = Inliers(l, m, among, band);
-    if (in.size() < 2 || !Crosses(l, o)) break;
-    best.line = l;
-    best.inliers = std::move(in);
+  if (!best->ok) return;
+  for (int refine = 0; refine < 2 && best->inliers.size() >= 2; ++refine) {
+    const Line l = FitLine(m, best->inliers);
+    Inliers(l, m, among, band, &w.candidate);
+    if (w.candidate.size() < 2 || !Crosses(l, o)) break;
+    best->line = l;
+    std::swap(best->inliers, w.candidate);
   }
   if (o.focus) {
     size_t inside = 0;
-    for (size_t i : best.inliers) inside += InFocus(m[i], o);
-    if (inside < 2) best.ok = false;
+    for (size_t i : best->inliers) inside += InFocus(m[i], o);
+    if (inside < 2) best->ok = false;
   }
-  return best;
 }
 
 double NormalDegrees(const Line& l) {
   return ReduceDirection(std::atan2(l.ny, l.nx) * 180.0 / M_PI);
 }
 
-DirectionLobe None(const std::string& reason) {
-  DirectionLobe lobe;
-  lobe.reason = reason;
-  return lobe;
+// A lobe reset to its defaults, its reason string kept (cleared) so that the
+// next reason is written into the memory it already holds.
+void Reset(DirectionLobe* lobe) {
+  std::string reason = std::move(lobe->reason);
+  *lobe = DirectionLobe{};
+  reason.clear();
+  lobe->reason = std::move(reason);
+}
+
+void Reset(DirectionEstimate* out) {
+  std::string first = std::move(out->first.reason), second = std::move(out->second.reason);
+  *out = DirectionEstimate{};
+  first.clear();
+  second.clear();
+  out->first.reason = std::move(first);
+  out->second.reason = std::move(second);
+}
+
+void SetNone(const char* reason, DirectionLobe* lobe) {
+  Reset(lobe);
+  lobe->reason.assign(reason);
 }
 
 // Neither lobe found, for one reason.
-void NoLines(const std::string& reason, DirectionEstimate* out) {
-  out->first = None(reason);
-  out->second = None(reason);
+void NoLines(const char* reason, DirectionEstimate* out) {
+  SetNone(reason, &out->first);
+  SetNone(reason, &out->second);
 }
 
-DirectionLobe Lobe(const Found& f, size_t crossings) {
-  DirectionLobe lobe;
-  lobe.status = DirectionStatus::kFound;
-  lobe.theta_deg = lobe.fit_theta_deg = NormalDegrees(f.line);
-  lobe.confidence = static_cast<double>(f.inliers.size()) / static_cast<double>(crossings);
-  return lobe;
+void SetLobe(const Found& f, size_t crossings, DirectionLobe* lobe) {
+  Reset(lobe);
+  lobe->status = DirectionStatus::kFound;
+  lobe->theta_deg = lobe->fit_theta_deg = NormalDegrees(f.line);
+  lobe->confidence = static_cast<double>(f.inliers.size()) / static_cast<double>(crossings);
 }
 
 // Crossings of several patches over one domain: crossing i belongs to patch
@@ -193,19 +228,20 @@ void FindParallelBands(const Stack& s, const std::vector<std::vector<size_t>>& b
 }
 
 // The inliers of FindParallelBands's lines, patch after patch.
-std::vector<size_t> BandInliers(const ParallelBands& b) {
-  std::vector<size_t> in;
-  in.reserve(b.total);
+void BandInliers(const ParallelBands& b, std::vector<size_t>* in) {
+  in->clear();
   for (size_t k = 0; k < b.begin.size(); ++k) {
-    for (size_t j = 0; j < b.count[k]; ++j) in.push_back(b.sorted[b.begin[k] + b.first[k] + j].second);
+    for (size_t j = 0; j < b.count[k]; ++j) in->push_back(b.sorted[b.begin[k] + b.first[k] + j].second);
   }
-  return in;
 }
 
 // Total least squares on parallel lines: each patch's inliers about their
 // own centroid, the scatter pooled.
-Line FitParallel(const Stack& s, const std::vector<size_t>& idx) {
-  std::vector<double> cx(s.patches, 0.0), cy(s.patches, 0.0), count(s.patches, 0.0);
+Line FitParallel(const Stack& s, const std::vector<size_t>& idx, Work& w) {
+  std::vector<double>&cx = w.cx, &cy = w.cy, &count = w.count;
+  cx.assign(static_cast<size_t>(s.patches), 0.0);
+  cy.assign(static_cast<size_t>(s.patches), 0.0);
+  count.assign(static_cast<size_t>(s.patches), 0.0);
   for (size_t i : idx) cx[s.of[i]] += s.m[i].x, cy[s.of[i]] += s.m[i].y, count[s.of[i]] += 1.0;
   double sxx = 0.0, syy = 0.0, sxy = 0.0;
   for (size_t i : idx) {
@@ -219,25 +255,25 @@ Line FitParallel(const Stack& s, const std::vector<size_t>& idx) {
   return l;
 }
 
-// The crossings of `among`, patch by patch.
-std::vector<std::vector<size_t>> ByPatch(const Stack& s, const std::vector<size_t>& among) {
-  std::vector<std::vector<size_t>> by_patch(static_cast<size_t>(s.patches));
-  for (size_t i : among) by_patch[s.of[i]].push_back(i);
-  return by_patch;
+// The crossings of `among`, patch by patch (the lists keep their memory).
+const std::vector<std::vector<size_t>>& ByPatch(const Stack& s, const std::vector<size_t>& among, Work& w) {
+  if (w.by_patch.size() < static_cast<size_t>(s.patches)) w.by_patch.resize(static_cast<size_t>(s.patches));
+  for (auto& list : w.by_patch) list.clear();
+  for (size_t i : among) w.by_patch[s.of[i]].push_back(i);
+  return w.by_patch;
 }
 
 // The stacked counterpart of BestLine: candidate directions through two
 // crossings of one patch, each scored by the inliers of its parallel lines
 // over all patches; a direction must rest on at least two of the centre
 // patch's crossings.
-Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double band,
-                        const EdgeLineOptions& o, uint64_t seed) {
-  Found best;
-  const std::vector<std::vector<size_t>> by_patch = ByPatch(s, among);
-  if (by_patch[s.centre].size() < 2) return best;
+void BestParallelLines(const Stack& s, const std::vector<size_t>& among, double band, const EdgeLineOptions& o,
+                       uint64_t seed, Work& w, ParallelBands& bands, Found* best) {
+  best->Clear();
+  const std::vector<std::vector<size_t>>& by_patch = ByPatch(s, among, w);
+  if (by_patch[s.centre].size() < 2) return;
   // Candidates are scored by their counts; only a new best builds its
   // inlier list.
-  ParallelBands bands;
   for (double baseline : {1.0 / 3.0, 4.0 * band}) {
     Pcg32 rng(seed);
     int tried = 0;
@@ -250,62 +286,63 @@ Found BestParallelLines(const Stack& s, const std::vector<size_t>& among, double
       ++tried;
       FindParallelBands(s, by_patch, -dy / len, dx / len, band, &bands);
       if (bands.centre < 2) continue;
-      if (bands.total > best.inliers.size()) {
-        best = {true, Line{0.0, 0.0, -dy / len, dx / len}, BandInliers(bands)};
+      if (bands.total > best->inliers.size()) {
+        best->ok = true;
+        best->line = Line{0.0, 0.0, -dy / len, dx / len};
+        BandInliers(bands, &best->inliers);
       }
     }
-    if (best.ok) break;
+    if (best->ok) break;
   }
-  if (!best.ok) return best;
-  for (int refine = 0; refine < 2 && best.inliers.size() >= 2; ++refine) {
-    const Line l = FitParallel(s, best.inliers);
+  if (!best->ok) return;
+  for (int refine = 0; refine < 2 && best->inliers.size() >= 2; ++refine) {
+    const Line l = FitParallel(s, best->inliers, w);
     FindParallelBands(s, by_patch, l.nx, l.ny, band, &bands);
     if (bands.centre < 2) break;
-    best.line = l;
-    best.inliers = BandInliers(bands);
+    best->line = l;
+    BandInliers(bands, &best->inliers);
   }
-  return best;
 }
 
-// The crossings of `among` within the band of a found line (or lines).
-using NearLine = std::function<std::vector<size_t>(const Found&, const std::vector<size_t>&)>;
-
 // Steps 3-4 on k crossings, the first line and (with o.second) a second
-// one on the crossings off it; best(among, seed) is the robust line search.
-// With `near`, a corner's first line is fitted again off the second's band.
-template <class Best>
-void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& best, const NearLine& near,
+// one on the crossings off it; best(among, seed, found) is the robust line
+// search. With `near` (near(found, among, inliers): the crossings of `among`
+// within the band of a found line or lines), a corner's first line is fitted
+// again off the second's band.
+template <class Best, class Near>
+void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& best, const Near* near, Work& w,
                DirectionEstimate* out) {
-  std::vector<size_t> all(k);
-  for (size_t i = 0; i < k; ++i) all[i] = i;
-  const Found first = best(all, seed);
+  char reason[128];
+  w.all.resize(k);
+  for (size_t i = 0; i < k; ++i) w.all[i] = i;
+  Found& first = w.first;
+  best(w.all, seed, &first);
   const double need = std::max<double>(o.min_crossings, o.min_share * k);
   if (!first.ok || first.inliers.size() < need) {
-    NoLines("no straight edge: " + std::to_string(first.inliers.size()) + " of " + std::to_string(k) +
-                " crossings on one line",
-            out);
+    std::snprintf(reason, sizeof(reason), "no straight edge: %zu of %zu crossings on one line", first.inliers.size(), k);
+    NoLines(reason, out);
     return;
   }
-  out->first = Lobe(first, k);
+  SetLobe(first, k, &out->first);
   if (!o.second) return;
-  std::vector<size_t> rest;
-  {
-    std::vector<bool> used(k, false);
-    for (size_t i : first.inliers) used[i] = true;
-    for (size_t i = 0; i < k; ++i) {
-      if (!used[i]) rest.push_back(i);
-    }
+  w.flags.assign(k, 0);
+  for (size_t i : first.inliers) w.flags[i] = 1;
+  w.rest.clear();
+  for (size_t i = 0; i < k; ++i) {
+    if (!w.flags[i]) w.rest.push_back(i);
   }
-  const Found second = best(rest, HashCombine(seed, 2));
+  Found& second = w.second;
+  best(w.rest, HashCombine(seed, 2), &second);
   const double need2 = std::max<double>(o.min_crossings, o.second_min_share * k);
   if (!second.ok || second.inliers.size() < need2) {
-    out->second = None("no second edge: " + std::to_string(second.inliers.size()) + " of " +
-                       std::to_string(k) + " crossings on a second line");
+    std::snprintf(reason, sizeof(reason), "no second edge: %zu of %zu crossings on a second line",
+                  second.inliers.size(), k);
+    SetNone(reason, &out->second);
   } else if (AxialDistanceDeg(NormalDegrees(second.line), out->first.theta_deg) < o.min_separation_deg) {
-    out->second = None("the second line is parallel to the first");
+    SetNone("the second line is parallel to the first", &out->second);
   } else {
-    out->second = Lobe(second, k);
-    if (!near) return;
+    SetLobe(second, k, &out->second);
+    if (near == nullptr) return;
     // A corner: each edge is a half-line, and the crossings near the vertex
     // lie in both bands; the first line took them all, and they pull its
     // direction towards the second edge. Its direction is fitted again on
@@ -318,15 +355,15 @@ void FindLines(size_t k, const EdgeLineOptions& o, uint64_t seed, const Best& be
     // 4096 over twelve scene seeds; on the image-plane pooled fit
     // (antialias) the same refit moved the edge error by -3% to +2%, so
     // that fit, and a single patch's, keep the first line as found.
-    std::vector<size_t> off_second;
-    {
-      std::vector<bool> near_second(k, false);
-      for (size_t i : near(second, all)) near_second[i] = true;
-      for (size_t i = 0; i < k; ++i) {
-        if (!near_second[i]) off_second.push_back(i);
-      }
+    (*near)(second, w.all, &w.near);
+    w.flags.assign(k, 0);
+    for (size_t i : w.near) w.flags[i] = 1;
+    w.off.clear();
+    for (size_t i = 0; i < k; ++i) {
+      if (!w.flags[i]) w.off.push_back(i);
     }
-    const Found refit = best(off_second, seed);
+    Found& refit = w.refit;
+    best(w.off, seed, &refit);
     if (refit.ok && refit.inliers.size() >= static_cast<size_t>(o.min_crossings) &&
         AxialDistanceDeg(NormalDegrees(refit.line), out->first.theta_deg) <
             AxialDistanceDeg(NormalDegrees(refit.line), out->second.theta_deg)) {
@@ -367,7 +404,7 @@ bool NonConstant(const SampledPatch& patch) {
 }
 
 // Steps 1-2: the midpoints of the neighbouring pairs whose values jump.
-std::vector<Point2> Crossings(const SampledPatch& patch, const EdgeLineOptions& o) {
+void Crossings(const SampledPatch& patch, const EdgeLineOptions& o, Work& w, std::vector<Point2>* mid) {
   const std::vector<Point2>& p = patch.points;
   const std::vector<double>& v = patch.values;
   const size_t n = p.size();
@@ -377,70 +414,137 @@ std::vector<Point2> Crossings(const SampledPatch& patch, const EdgeLineOptions& 
   const double radius = o.neighbour_radius * spacing, jump = o.jump_fraction * range;
 
   // Neighbouring pairs through a bucket grid of cells no smaller than the
-  // radius (so the 3 x 3 cells around a point hold all its neighbours).
+  // radius (so the 3 x 3 cells around a point hold all its neighbours): a
+  // counting sort of the points by cell, each cell's points in index order.
   const int g = std::max(1, static_cast<int>(std::floor(1.0 / radius)));
   auto cell = [g](double t) { return std::min(g - 1, std::max(0, static_cast<int>(t * g))); };
-  std::vector<std::vector<uint32_t>> buckets(static_cast<size_t>(g) * g);
-  for (size_t i = 0; i < n; ++i) buckets[cell(p[i].y) * g + cell(p[i].x)].push_back(static_cast<uint32_t>(i));
-  std::vector<Point2> mid;
+  const size_t cells = static_cast<size_t>(g) * g;
+  w.cell_start.assign(cells + 1, 0);
+  w.cell_of.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    w.cell_of[i] = cell(p[i].y) * g + cell(p[i].x);
+    ++w.cell_start[static_cast<size_t>(w.cell_of[i]) + 1];
+  }
+  for (size_t c = 0; c < cells; ++c) w.cell_start[c + 1] += w.cell_start[c];
+  w.cell_fill.assign(w.cell_start.begin(), w.cell_start.end() - 1);
+  w.cell_order.resize(n);
+  for (size_t i = 0; i < n; ++i) w.cell_order[w.cell_fill[static_cast<size_t>(w.cell_of[i])]++] = static_cast<uint32_t>(i);
+  mid->clear();
   for (size_t i = 0; i < n; ++i) {
     const int cx = cell(p[i].x), cy = cell(p[i].y);
     for (int y = std::max(0, cy - 1); y <= std::min(g - 1, cy + 1); ++y) {
       for (int x = std::max(0, cx - 1); x <= std::min(g - 1, cx + 1); ++x) {
-        for (uint32_t j : buckets[y * g + x]) {
+        const size_t c = static_cast<size_t>(y * g + x);
+        for (uint32_t at = w.cell_start[c]; at < w.cell_start[c + 1]; ++at) {
+          const uint32_t j = w.cell_order[at];
           if (j <= i) continue;
           const double dx = p[j].x - p[i].x, dy = p[j].y - p[i].y;
           if (dx * dx + dy * dy >= radius * radius) continue;
           if (std::fabs(v[j] - v[i]) < jump) continue;
-          mid.push_back({0.5 * (p[i].x + p[j].x), 0.5 * (p[i].y + p[j].y)});
+          mid->push_back({0.5 * (p[i].x + p[j].x), 0.5 * (p[i].y + p[j].y)});
         }
       }
     }
   }
-  return mid;
 }
 
 }  // namespace
 
-StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
-  StatusOr<PatchCrossings> c = FindCrossings(patch, o);
-  if (!c.ok()) return c.status();
-  return EstimateEdgeLines(*c, o);
+struct EdgeLineScratch::Impl {
+  Work work;
+  PatchCrossings own;     // a patch's crossings, for the fits of one patch
+  SampledPatch pooled;    // the pooled patch of EstimateEdgeLinesPooled
+  Stack stack;            // the stacked crossings of EstimateEdgeLinesStacked
+  ParallelBands bands, near_bands;
+};
+
+EdgeLineScratch::EdgeLineScratch() : impl_(std::make_unique<Impl>()) {}
+EdgeLineScratch::~EdgeLineScratch() = default;
+EdgeLineScratch::EdgeLineScratch(EdgeLineScratch&&) noexcept = default;
+EdgeLineScratch& EdgeLineScratch::operator=(EdgeLineScratch&&) noexcept = default;
+
+void EdgeLineScratch::Reserve(size_t points, size_t crossings, size_t patches) {
+  Work& w = impl_->work;
+  for (auto* v : {&w.cell_start, &w.cell_fill, &w.cell_order}) v->reserve(points + 1);
+  w.cell_of.reserve(points);
+  for (auto* v : {&w.all, &w.rest, &w.off, &w.near, &w.anchors, &w.candidate, &w.first.inliers, &w.second.inliers,
+                  &w.refit.inliers}) {
+    v->reserve(crossings);
+  }
+  w.flags.reserve(crossings);
+  if (w.by_patch.size() < patches) w.by_patch.resize(patches);
+  for (auto& list : w.by_patch) list.reserve(crossings);
+  for (auto* v : {&w.cx, &w.cy, &w.count}) v->reserve(patches);
+  impl_->own.midpoints.reserve(crossings);
+  impl_->pooled.points.reserve(points);
+  impl_->pooled.values.reserve(points);
+  impl_->stack.m.reserve(crossings);
+  impl_->stack.of.reserve(crossings);
+  for (ParallelBands* b : {&impl_->bands, &impl_->near_bands}) {
+    b->sorted.reserve(crossings);
+    for (auto* v : {&b->begin, &b->first, &b->count}) v->reserve(patches);
+  }
 }
 
-StatusOr<DirectionEstimate> EstimateEdgeLines(const PatchCrossings& c, const EdgeLineOptions& o) {
+Status FindCrossings(const SampledPatch& patch, const EdgeLineOptions& o, EdgeLineScratch& scratch,
+                     PatchCrossings* out) {
+  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
+  if (Status s = ValidateOptions(o); !s.ok()) return s;
+  out->samples = patch.points.size();
+  out->constant = !NonConstant(patch);
+  out->midpoints.clear();
+  if (!out->constant) Crossings(patch, o, scratch.impl().work, &out->midpoints);
+  return Status::Ok();
+}
+
+Status EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o, EdgeLineScratch& scratch,
+                         DirectionEstimate* out) {
+  PatchCrossings& c = scratch.impl().own;
+  if (Status s = FindCrossings(patch, o, scratch, &c); !s.ok()) return s;
+  return EstimateEdgeLines(c, o, scratch, out);
+}
+
+Status EstimateEdgeLines(const PatchCrossings& c, const EdgeLineOptions& o, EdgeLineScratch& scratch,
+                         DirectionEstimate* out) {
   if (c.samples == 0) return Status::InvalidArgument("edge lines: the crossings of an empty patch");
   if (Status s = ValidateOptions(o); !s.ok()) return s;
-  DirectionEstimate out;
-  out.has_second = o.second;
+  Reset(out);
+  out->has_second = o.second;
   const size_t n = c.samples;
   if (c.constant) {
-    NoLines("constant patch", &out);
-    return out;
+    NoLines("constant patch", out);
+    return Status::Ok();
   }
   const double spacing = 1.0 / std::sqrt(static_cast<double>(n));
   const std::vector<Point2>& mid = c.midpoints;
   const size_t k = mid.size();
-  out.frequencies = k;
+  out->frequencies = k;
   if (k < static_cast<size_t>(o.min_crossings)) {
-    NoLines("no edge: " + std::to_string(k) + " neighbouring pairs jump", &out);
-    return out;
+    char reason[96];
+    std::snprintf(reason, sizeof(reason), "no edge: %zu neighbouring pairs jump", k);
+    NoLines(reason, out);
+    return Status::Ok();
   }
   const double band = o.band * spacing;
   const uint64_t seed = HashCombine(static_cast<uint64_t>(n), static_cast<uint64_t>(k));
+  Work& w = scratch.impl().work;
+  using NoNear = void (*)(const Found&, const std::vector<size_t>&, std::vector<size_t>*);
   FindLines(
-      k, o, seed, [&](const std::vector<size_t>& among, uint64_t s) { return BestLine(mid, among, band, o, s); },
-      NearLine{}, &out);
-  return out;
+      k, o, seed,
+      [&](const std::vector<size_t>& among, uint64_t s, Found* found) { BestLine(mid, among, band, o, s, w, found); },
+      static_cast<const NoNear*>(nullptr), w, out);
+  return Status::Ok();
 }
 
-StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
-                                                    double margin, const EdgeLineOptions& options) {
+Status EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels, double margin,
+                               const EdgeLineOptions& options, EdgeLineScratch& scratch, DirectionEstimate* out) {
   const SampledPatch* centre = pixels[4];
   if (!centre || centre->points.empty()) return Status::InvalidArgument("pooled edge lines: no centre pixel");
   if (!(margin > 0.0 && margin <= 1.0)) return Status::InvalidArgument("pooled edge lines: margin must be in (0, 1]");
   const double side = 1.0 + 2.0 * margin;
-  SampledPatch pooled;
+  SampledPatch& pooled = scratch.impl().pooled;
+  pooled.points.clear();
+  pooled.values.clear();
   for (int k = 0; k < 9; ++k) {
     const SampledPatch* p = pixels[k];
     if (!p) continue;
@@ -460,21 +564,11 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const Sampl
   const double inset = kPooledFocusInset / std::sqrt(static_cast<double>(centre->points.size()));
   o.focus_x0 = o.focus_y0 = (margin + inset) / side;
   o.focus_x1 = o.focus_y1 = (1.0 + margin - inset) / side;
-  return EstimateEdgeLines(pooled, o);
+  return EstimateEdgeLines(pooled, o, scratch, out);
 }
 
-StatusOr<PatchCrossings> FindCrossings(const SampledPatch& patch, const EdgeLineOptions& o) {
-  if (Status s = ValidateSampledPatch(patch); !s.ok()) return s;
-  if (Status s = ValidateOptions(o); !s.ok()) return s;
-  PatchCrossings c;
-  c.samples = patch.points.size();
-  c.constant = !NonConstant(patch);
-  if (!c.constant) c.midpoints = Crossings(patch, o);
-  return c;
-}
-
-StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,
-                                                     const EdgeLineOptions& o) {
+Status EstimateEdgeLinesStacked(std::span<const PatchCrossings* const> pixels, const EdgeLineOptions& o,
+                                EdgeLineScratch& scratch, DirectionEstimate* out) {
   const size_t count = pixels.size();
   const size_t side = static_cast<size_t>(std::lround(std::sqrt(static_cast<double>(count))));
   if (side * side != count || side % 2 == 0) {
@@ -490,13 +584,16 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Pat
       return Status::InvalidArgument("stacked edge lines: every pixel needs as many samples as the centre");
     }
   }
-  DirectionEstimate out;
-  out.has_second = o.second;
+  Reset(out);
+  out->has_second = o.second;
   if (centre->constant) {
-    NoLines("constant patch", &out);
-    return out;
+    NoLines("constant patch", out);
+    return Status::Ok();
   }
-  Stack s;
+  EdgeLineScratch::Impl& x = scratch.impl();
+  Stack& s = x.stack;
+  s.m.clear();
+  s.of.clear();
   s.patches = static_cast<int>(count);
   s.centre = centre_index;
   for (size_t k = 0; k < count; ++k) {
@@ -507,23 +604,68 @@ StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const Pat
     }
   }
   const size_t k = s.m.size();
-  out.frequencies = k;
+  out->frequencies = k;
   const size_t own = static_cast<size_t>(std::count(s.of.begin(), s.of.end(), s.centre));
   if (own < 2 || k < static_cast<size_t>(o.min_crossings)) {
-    NoLines("no edge: " + std::to_string(own) + " neighbouring pairs jump in the pixel", &out);
-    return out;
+    char reason[96];
+    std::snprintf(reason, sizeof(reason), "no edge: %zu neighbouring pairs jump in the pixel", own);
+    NoLines(reason, out);
+    return Status::Ok();
   }
   const double band = o.band / std::sqrt(static_cast<double>(centre->samples));
   const uint64_t seed = HashCombine(static_cast<uint64_t>(centre->samples), static_cast<uint64_t>(k));
+  Work& w = x.work;
+  const auto near = [&](const Found& f, const std::vector<size_t>& among, std::vector<size_t>* inliers) {
+    FindParallelBands(s, ByPatch(s, among, w), f.line.nx, f.line.ny, band, &x.near_bands);
+    BandInliers(x.near_bands, inliers);
+  };
   FindLines(
       k, o, seed,
-      [&](const std::vector<size_t>& among, uint64_t sd) { return BestParallelLines(s, among, band, o, sd); },
-      [&](const Found& f, const std::vector<size_t>& among) {
-        ParallelBands bands;
-        FindParallelBands(s, ByPatch(s, among), f.line.nx, f.line.ny, band, &bands);
-        return BandInliers(bands);
+      [&](const std::vector<size_t>& among, uint64_t sd, Found* found) {
+        BestParallelLines(s, among, band, o, sd, w, x.bands, found);
       },
-      &out);
+      &near, w, out);
+  return Status::Ok();
+}
+
+// The calls that return their results, each with a scratch of its own.
+
+StatusOr<PatchCrossings> FindCrossings(const SampledPatch& patch, const EdgeLineOptions& o) {
+  EdgeLineScratch scratch;
+  PatchCrossings c;
+  if (Status s = FindCrossings(patch, o, scratch, &c); !s.ok()) return s;
+  return c;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& o) {
+  EdgeLineScratch scratch;
+  DirectionEstimate out;
+  if (Status s = EstimateEdgeLines(patch, o, scratch, &out); !s.ok()) return s;
+  return out;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLines(const PatchCrossings& c, const EdgeLineOptions& o) {
+  EdgeLineScratch scratch;
+  DirectionEstimate out;
+  if (Status s = EstimateEdgeLines(c, o, scratch, &out); !s.ok()) return s;
+  return out;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels,
+                                                    double margin, const EdgeLineOptions& options) {
+  EdgeLineScratch scratch;
+  DirectionEstimate out;
+  if (Status s = EstimateEdgeLinesPooled(pixels, margin, options, scratch, &out); !s.ok()) return s;
+  return out;
+}
+
+StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,
+                                                     const EdgeLineOptions& o) {
+  EdgeLineScratch scratch;
+  DirectionEstimate out;
+  if (Status s = EstimateEdgeLinesStacked(std::span<const PatchCrossings* const>(pixels), o, scratch, &out); !s.ok()) {
+    return s;
+  }
   return out;
 }
 

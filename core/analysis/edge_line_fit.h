@@ -1,6 +1,8 @@
 #pragma once
 
 #include <array>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "core/analysis/direction_estimate.h"
@@ -126,5 +128,39 @@ StatusOr<DirectionEstimate> EstimateEdgeLines(const PatchCrossings& crossings,
 // options: the same estimate, to the last bit.
 StatusOr<DirectionEstimate> EstimateEdgeLinesStacked(const std::vector<const PatchCrossings*>& pixels,
                                                      const EdgeLineOptions& options = {});
+
+// The working memory of the fits, for a caller that fits many patches (a
+// renderer's pixels): with one kept per thread and the results written into
+// the caller's own PatchCrossings and DirectionEstimate, a fit allocates
+// nothing once the buffers have grown to the largest patch seen (a lobe's
+// reason is written into the string it already holds). The same estimates,
+// to the last bit, as the calls above, which run these with a scratch of
+// their own.
+class EdgeLineScratch {
+ public:
+  EdgeLineScratch();
+  ~EdgeLineScratch();
+  EdgeLineScratch(EdgeLineScratch&&) noexcept;
+  EdgeLineScratch& operator=(EdgeLineScratch&&) noexcept;
+  // Grows every buffer to hold patches of `points` samples with `crossings`
+  // crossings in all, over `patches` stacked patches, so that fits up to
+  // that size allocate nothing from the first on.
+  void Reserve(size_t points, size_t crossings, size_t patches);
+  struct Impl;
+  Impl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+Status FindCrossings(const SampledPatch& patch, const EdgeLineOptions& options, EdgeLineScratch& scratch,
+                     PatchCrossings* out);
+Status EstimateEdgeLines(const SampledPatch& patch, const EdgeLineOptions& options, EdgeLineScratch& scratch,
+                         DirectionEstimate* out);
+Status EstimateEdgeLines(const PatchCrossings& crossings, const EdgeLineOptions& options, EdgeLineScratch& scratch,
+                         DirectionEstimate* out);
+Status EstimateEdgeLinesPooled(const std::array<const SampledPatch*, 9>& pixels, double margin,
+                               const EdgeLineOptions& options, EdgeLineScratch& scratch, DirectionEstimate* out);
+Status EstimateEdgeLinesStacked(std::span<const PatchCrossings* const> pixels, const EdgeLineOptions& options,
+                                EdgeLineScratch& scratch, DirectionEstimate* out);
 
 }  // namespace alignset

@@ -28,8 +28,9 @@
 // The points of a pixel are a function of (options.seed, x, y): the same on
 // every thread, machine and run. The sampler is immutable after Create and
 // safe to share between threads; each thread keeps its own Scratch, which
-// holds every buffer a plan needs, so a pixel allocates nothing once the
-// Scratch has grown to its size (the first few pixels).
+// holds every buffer a plan needs (the core's edge-line fit's included), grown
+// on its first pixel for the largest block of its M: no pixel after that
+// allocates (tested by counting every operator new over whole frames).
 
 #include <alignset/point_set.h>
 #include <alignset/prepass_fit.h>
