@@ -22,4 +22,25 @@ const PointSet* AlignedSetTable::Two(int a, int b) const {
   return it == two.end() ? nullptr : &it->second;
 }
 
+TableSet AlignedSetTable::Served(const SetChoice& c) const {
+  TableSet out;
+  const PointSet* points = nullptr;
+  uint32_t g = 0;
+  if (c.kind == SetChoice::Kind::kOne) {
+    points = One(c.a);
+    if (points && c.a < static_cast<int>(one_generator.size())) g = one_generator[c.a];
+  } else if (c.kind == SetChoice::Kind::kTwo) {
+    points = Two(c.a, c.b);
+    if (auto it = two_generator.find({std::min(c.a, c.b), std::max(c.a, c.b)}); points && it != two_generator.end()) {
+      g = it->second;
+    }
+  }
+  if (!points) return out;
+  out.n = static_cast<uint32_t>(points->size());
+  out.lattice_generator = g;
+  out.folded = g != 0 && folded;
+  out.points = points;
+  return out;
+}
+
 }  // namespace alignset::render

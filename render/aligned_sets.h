@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <alignset/pixel_sampler.h>
+#include <alignset/set_table.h>
 
 #include "render/direction.h"
 #include "core/util/point_set.h"
@@ -35,8 +36,15 @@ struct AlignedSetTable {
   // Tent-folded lattices (render/lattice_sets.h): the sets are the lattices
   // unfolded; a pixel folds each point by 1 - |2u - 1| after its shift.
   bool folded = false;
+  // A lattice table's generators beside its points (0: not a lattice), so
+  // that a pixel's points come from the sampler library (SetPixelPoints).
+  std::vector<uint32_t> one_generator;             // by served degree, like `one`
+  std::map<std::pair<int, int>, uint32_t> two_generator;
   const PointSet* One(int served_deg) const;
   const PointSet* Two(int a, int b) const;
+  // The served set of a choice as the sampler library reads it; points null
+  // when the table was not filled with it.
+  TableSet Served(const SetChoice& c) const;
 };
 
 }  // namespace alignset::render

@@ -79,6 +79,7 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   table.n = n;
   table.folded = folded;
   table.one.resize(180);
+  table.one_generator.assign(180, 0);
   // All keys in one call: the first stage's work per degree is shared by
   // every pair the degree is in.
   std::vector<std::vector<double>> keys;
@@ -112,8 +113,10 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
     PointSet points = Rank1LatticePoints(key.n, g, 0);
     if (s.one >= 0) {
       table.one[s.one] = std::move(points);
+      table.one_generator[s.one] = g;
     } else {
       table.two[s.two] = std::move(points);
+      table.two_generator[s.two] = g;
     }
   }
   if (stats) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <alignset/aligned_sampler.h>
 #include <alignset/pixel_sampler.h>
 
 #include "core/optimize/aligned_lattice.h"
@@ -124,22 +125,26 @@ class Aligned : public PixelSampler {
           AlignedPolicy policy, bool per_pixel_shift)
       : n_(n), sets_(sets), dirs_(dirs), policy_(policy), shift_(per_pixel_shift) {}
   double Estimate(const PixelIntegrand& f, const PixelTask& t) const override {
+    // The sampler library's points (<alignset/aligned_sampler.h>): the
+    // pixel's own Owen-Sobol points without a direction, else the served
+    // set under the pixel's shift.
     const SetChoice c = ChooseSet(RecipeDirections((*dirs_)[t.index]), policy_);
-    const PointSet* set = nullptr;
-    if (c.kind == SetChoice::Kind::kOne) set = sets_->One(c.a);
-    if (c.kind == SetChoice::Kind::kTwo) set = sets_->Two(c.a, c.b);
+    thread_local std::vector<Point2> points;
     if (c.kind == SetChoice::Kind::kFallback) {
-      return Mean(f, OwenScrambledSobol(n_, PixelHash(t.seed, t.x, t.y, kSaltSet)));
+      points.resize(n_);
+      FallbackPixelPoints(t.seed, static_cast<uint32_t>(t.x), static_cast<uint32_t>(t.y), points);
+      return Mean(f, points);
     }
-    if (!set) return std::nan("");  // a set the table was not filled with: shows up, never hides
-    // The client library's per-pixel recipe (<alignset/pixel_sampler.h>).
+    const TableSet set = sets_->Served(c);
+    if (!set.points) return std::nan("");  // a set the table was not filled with: shows up, never hides
     const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
+    points.resize(set.n);
+    SetPixelPoints(set, s, points);
     double sum = 0.0;
-    for (const Point2& p : *set) {
-      const Point2 q = ShiftPoint(p, s);
-      sum += sets_->folded ? f.Eval({TentFold(q.x), TentFold(q.y)}) : f.Eval({q.x, q.y});
+    for (const Point2& p : points) {
+      sum += sets_->folded && set.lattice_generator == 0 ? f.Eval({TentFold(p.x), TentFold(p.y)}) : f.Eval({p.x, p.y});
     }
-    return sum / static_cast<double>(set->size());
+    return sum / static_cast<double>(points.size());
   }
 
  private:

@@ -52,6 +52,7 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
   table.n = n;
   table.folded = made->folded();
   table.one.resize(180);
+  table.one_generator.assign(180, 0);
   std::vector<SetRequest> items;
   // The client library's key -> request mapping (<alignset/pixel_sampler.h>).
   for (int deg = 0; deg < 180; ++deg) {
@@ -82,9 +83,11 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
           return Status::Internal("server served a different direction for " + std::to_string(deg) + " deg");
         }
         table.one[deg] = std::move(item.set.points);
+        if (lattice) table.one_generator[deg] = item.set.info.lattice_generator;
       } else {
         const int a = static_cast<int>(items[i].directions_deg[0]), b = static_cast<int>(items[i].directions_deg[1]);
         table.two[{a, b}] = std::move(item.set.points);
+        if (lattice) table.two_generator[{a, b}] = item.set.info.lattice_generator;
       }
     }
     report(stage, static_cast<double>(end), static_cast<double>(items.size()), "");

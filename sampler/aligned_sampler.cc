@@ -121,6 +121,27 @@ StatusOr<PixelPlan> AlignedSampler::Plan(uint32_t x, uint32_t y, std::span<const
   return plan;
 }
 
+void SetPixelPoints(const TableSet& set, Point2 shift, std::span<Point2> out) {
+  if (set.lattice_generator != 0) {
+    // The lattice's realization 0 under the pixel's shift (the points
+    // alignset render's lattices take), folded after the shift for a
+    // tent-lattice.
+    Rank1LatticePointsInto(set.n, set.lattice_generator, 0, out);
+    const double below_one = std::nextafter(1.0, 0.0);
+    for (Point2& p : out) {
+      p = ShiftPoint(p, shift);
+      if (set.folded) p = {std::min(TentFold(p.x), below_one), std::min(TentFold(p.y), below_one)};
+    }
+    return;
+  }
+  const size_t count = std::min(out.size(), set.points->size());
+  for (size_t i = 0; i < count; ++i) out[i] = ShiftPoint((*set.points)[i], shift);
+}
+
+void FallbackPixelPoints(uint64_t seed, uint32_t x, uint32_t y, std::span<Point2> out) {
+  OwenScrambledSobolInto(PixelHash(seed, x, y, kSaltSet), 0, out);
+}
+
 void AlignedSampler::MainPoints(const PixelPlan& plan, std::span<Point2> out) const {
   const std::span<Point2> points = out.first(std::min<size_t>(out.size(), options_.n));
   switch (plan.main) {
@@ -131,22 +152,9 @@ void AlignedSampler::MainPoints(const PixelPlan& plan, std::span<Point2> out) co
       OwenScrambledSobolInto(plan.main_seed, prepass_samples(), points);
       return;
     case PixelPlan::Main::kSet:
-      break;
+      SetPixelPoints(plan.set, plan.shift, points);
+      return;
   }
-  const TableSet& set = plan.set;
-  if (set.lattice_generator != 0) {
-    // The lattice's realization 0 under the pixel's shift (the points
-    // alignset render's lattices take), folded after the shift for a
-    // tent-lattice.
-    Rank1LatticePointsInto(set.n, set.lattice_generator, 0, points);
-    const double below_one = std::nextafter(1.0, 0.0);
-    for (Point2& p : points) {
-      p = ShiftPoint(p, plan.shift);
-      if (set.folded) p = {std::min(TentFold(p.x), below_one), std::min(TentFold(p.y), below_one)};
-    }
-    return;
-  }
-  for (size_t i = 0; i < points.size(); ++i) points[i] = ShiftPoint((*set.points)[i], plan.shift);
 }
 
 double AlignedSampler::Estimate(const PixelPlan& plan, std::span<const double> prepass_values,

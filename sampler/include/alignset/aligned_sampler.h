@@ -70,6 +70,15 @@ double PrepassWeight(uint32_t prepass_samples, uint32_t n);
 // pre-pass spans blocks).
 double ContinuedEstimate(double prepass_mean, uint32_t prepass_samples, std::span<const double> continued_values);
 
+// A served set's points for one pixel: a lattice (set.lattice_generator)
+// rebuilt under `shift` (its realization 0 moved by the shift, folded after
+// it for a tent-lattice), any other set shifted on the torus. out.size() is
+// the set's n. The points AlignedSampler::MainPoints gives a planned pixel.
+void SetPixelPoints(const TableSet& set, Point2 shift, std::span<Point2> out);
+// A direction-less pixel's own N Owen-scrambled Sobol points under a
+// render's seed (AlignedSampler's fallback).
+void FallbackPixelPoints(uint64_t seed, uint32_t x, uint32_t y, std::span<Point2> out);
+
 struct AlignedSamplerOptions {
   uint32_t n = 256;                       // main points per pixel: an N of the table
   std::string construction = "lattice";   // the table's construction to read
