@@ -136,7 +136,7 @@ def scan(root):
             errors.append("ALLOWED table for %s has a cycle: %s" % (name, " -> ".join(cycle)))
     top_dirs = sorted(d for d in os.listdir(root)
                       if os.path.isdir(os.path.join(root, d)) and not d.startswith(".")
-                      and d not in NOT_SOURCE)
+                      and d not in NOT_SOURCE and not d.startswith("build"))
     for top in top_dirs:
         top_dir = os.path.join(root, top)
         if top not in TOP_ALLOWED:
