@@ -1,7 +1,6 @@
 #include "render/spectral_estimator.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cstdlib>
 

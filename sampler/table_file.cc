@@ -224,7 +224,6 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
     at += payload;
     sections.push_back(std::move(s));
   }
-  if (Status ok = CheckSections(sections); !ok.ok()) return ok;
   return sections;
 }
 

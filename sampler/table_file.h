@@ -28,9 +28,10 @@ inline constexpr char kTableMagic[8] = {'A', 'L', 'I', 'G', 'N', 'T', 'B', 'L'};
 std::vector<uint8_t> EncodeTable(const std::vector<TableSection>& sections);
 // DATA_LOSS for damage (empty, truncated, checksum), INVALID_ARGUMENT for a
 // file that is whole but not a table this library reads (magic, version, a
-// section out of range); the message names the problem.
+// directory entry out of range); the message names the problem. The keys'
+// contents are CheckSections' to check (SetTable::Parse runs both, each once).
 StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes);
-// What DecodeTable checks of each section, for sections made in memory:
+// What a table's sections must hold, a file's or sections made in memory:
 // N, construction and space in range, the space's key count, one generator
 // coprime to N per key of a lattice, N points in [0, 1) per key otherwise,
 // and no two sections of one (N, construction, space).
