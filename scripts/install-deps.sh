@@ -5,7 +5,9 @@
 #   scripts/install-deps.sh          what building and running alignset needs (the
 #                                    quickstart, the container image's build stage)
 #   scripts/install-deps.sh --test   that, plus what the test suite, the benchmarks,
-#                                    the plots and the container test need (scripts/test.sh)
+#                                    the plots, the container test and the pbrt-v4
+#                                    build need (scripts/test.sh)
+#   scripts/install-deps.sh --pbrt   the build's, plus pbrt-v4's (integrations/pbrt-v4)
 set -euo pipefail
 
 # Compilers and the libraries the CLI, the server and the client library link.
@@ -28,10 +30,19 @@ TEST_PACKAGES=(
   yamllint buildah podman debootstrap
 )
 
+# What pbrt-v4 (integrations/pbrt-v4/build.sh) builds against: its git
+# submodules' Debian packages (Ptex and wjakob/filesystem have stand-ins), and
+# ccache, which makes a rebuild after a patch to pbrt's headers take seconds.
+PBRT_PACKAGES=(
+  libopenexr-dev libdouble-conversion-dev libstb-dev libdeflate-dev libutf8proc-dev
+  libglfw3-dev libnanovdb-dev liblodepng-dev libqoi-dev zlib1g-dev libgl-dev ccache
+)
+
 case "${1:-}" in
   "") PACKAGES=("${BUILD_PACKAGES[@]}") ;;
-  --test) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}") ;;
-  *) echo "usage: $0 [--test]" >&2; exit 2 ;;
+  --test) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${PBRT_PACKAGES[@]}") ;;
+  --pbrt) PACKAGES=("${BUILD_PACKAGES[@]}" "${PBRT_PACKAGES[@]}") ;;
+  *) echo "usage: $0 [--test | --pbrt]" >&2; exit 2 ;;
 esac
 
 missing=()

@@ -64,6 +64,9 @@ TOP_ALLOWED = {
     # The `alignset` command line sits on top of every library it drives
     # (`alignset render` runs render/, `alignset cache` storage/).
     "cli": ["core", "storage", "client", "sampler", "render", PUBLIC],
+    # alignset inside other renderers (integrations/pbrt-v4): the installed
+    # API only, as a renderer author's own checkout would use it.
+    "integrations": [PUBLIC],
     "bench": PRODUCT,
     "tests": PRODUCT + ["bench"],
     "deploy": ["proto"],
@@ -73,7 +76,7 @@ TOP_ALLOWED = {
 # Top-level folders that hold no C++ of the project.
 NOT_SOURCE = {"build", "docs", "shared"}
 
-SOURCE_EXT = (".h", ".cc", ".cu", ".cuh")
+SOURCE_EXT = (".h", ".cc", ".cpp", ".cu", ".cuh")
 QUOTED_RE = re.compile(r'^\s*#\s*include\s+"([A-Za-z0-9_.-]+)/([^"]*)"')
 ANGLE_RE = re.compile(r'^\s*#\s*include\s+<(alignset)/([^>]*)>')
 

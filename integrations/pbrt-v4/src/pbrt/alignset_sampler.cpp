@@ -1,0 +1,362 @@
+// alignset's "aligned" sampler for pbrt-v4: see alignset_sampler.h.
+
+#include <pbrt/alignset_sampler.h>
+
+#include <pbrt/options.h>
+#include <pbrt/paramdict.h>
+#include <pbrt/util/check.h>
+#include <pbrt/util/error.h>
+#include <pbrt/util/file.h>
+#include <pbrt/util/hash.h>
+#include <pbrt/util/lowdiscrepancy.h>
+#include <pbrt/util/math.h>
+#include <pbrt/util/print.h>
+#include <pbrt/util/spectrum.h>
+#include <pbrt/util/stats.h>
+
+#include "alignset_bridge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace pbrt {
+
+STAT_COUNTER("Aligned sampler/Pixels planned", nPlanned);
+STAT_COUNTER("Aligned sampler/Pixels with a film-sample direction", nFilmDirection);
+STAT_COUNTER("Aligned sampler/Pixels with a light-sample direction", nLightDirection);
+
+namespace {
+
+// Which of a pixel's 2-D samples take aligned points.
+enum class Aligned { kFilmAndLight, kFilm, kLight, kNone };
+
+constexpr int kPassPrepass = 0, kPassMain = 1;
+// The dimension of pbrt's wavelength sample: RayIntegrator::EvaluatePixelSample's
+// first Get1D after StartPixelSample.
+constexpr int kWavelengthDimension = 0;
+
+}  // namespace
+
+using pbrt_alignset::Planner;
+using Point = pbrt_alignset::Point;
+using pbrt_alignset::kFilm;
+using pbrt_alignset::kLight;
+
+struct AlignedSampler::Shared {
+    int samplesPerPixel = 0;
+    int prepass = 0;  // M
+    int main = 0;     // N
+    int seed = 0;
+    int lightDimension = 5;
+    bool pairWavelength = true;
+    Aligned aligned = Aligned::kFilmAndLight;
+    std::string tablePath, construction;
+    std::unique_ptr<Planner> planner;
+    double prepassWeight = 0;  // M^1.5 / (M^1.5 + 2 N^1.5)
+
+    // Set by StartRender.
+    Bounds2i bounds;
+    std::vector<double> values;   // each pixel's M pre-pass luminances, in sample order
+    std::vector<uint8_t> planned;  // written by the pixel's own thread only
+
+    bool AlignsFilm() const {
+        return aligned == Aligned::kFilmAndLight || aligned == Aligned::kFilm;
+    }
+    bool AlignsLight() const {
+        return aligned == Aligned::kFilmAndLight || aligned == Aligned::kLight;
+    }
+    size_t PixelIndex(Point2i p) const {
+        Point2i q = Point2i(p - bounds.pMin);
+        return size_t(q.y) * size_t(bounds.pMax.x - bounds.pMin.x) + size_t(q.x);
+    }
+    // Where pixel p's light sample s of a pass lies among the light set's
+    // points: a permutation of the pass, so the film and light points of one
+    // sample are independent (both sets are lattices of one generator family).
+    uint32_t LightIndex(Point2i p, int pass, int s, int count) const {
+        return PermutationElement(uint32_t(s), uint32_t(count),
+                                  uint32_t(Hash(p, pass, seed, 0x6c696768)));
+    }
+};
+
+struct AlignedSampler::Local {
+    Point2i pixel{-1, -1};
+    int pass = -1;  // the pass the cached points below are of
+    int sampleIndex = 0, dimension = 0;
+    std::vector<Point> filmPoints, lightPoints;
+    // The main pass's wavelength sample as a third lattice coordinate
+    // (Planner::ThirdMultiplier) of the film set or, without one, the light
+    // set: 0 where neither is a lattice.
+    uint32_t third = 0;
+    pbrt_alignset::Domain thirdDomain = pbrt_alignset::kFilm;
+    double thirdShift = 0;
+    std::unique_ptr<Planner::Scratch, void (*)(Planner::Scratch *)> scratch{Planner::NewScratch()};
+    std::vector<double> blockValues;
+    std::vector<const double *> block;
+};
+
+AlignedSampler::AlignedSampler(std::shared_ptr<Shared> shared)
+    : shared(std::move(shared)), local(std::make_unique<Local>()) {}
+
+AlignedSampler::AlignedSampler(const AlignedSampler &other)
+    : shared(other.shared), local(std::make_unique<Local>()) {}
+
+AlignedSampler::~AlignedSampler() = default;
+
+int AlignedSampler::SamplesPerPixel() const {
+    return shared->samplesPerPixel;
+}
+
+int AlignedSampler::PrepassSamples() const {
+    return shared->prepass;
+}
+
+void AlignedSampler::StartRender(Bounds2i pixelBounds) {
+    Shared &s = *shared;
+    s.bounds = pixelBounds;
+    size_t pixels = size_t(pixelBounds.Area());
+    s.values.assign(pixels * size_t(s.prepass), 0.0);
+    s.planned.assign(pixels, 0);
+    s.planner->StartRender(pixels);
+}
+
+Float AlignedSampler::RecordSample(Point2i pPixel, int sampleIndex, Float luminance) {
+    Shared &s = *shared;
+    if (s.values.empty())
+        LOG_FATAL("AlignedSampler: RecordSample before StartRender");
+    if (sampleIndex < s.prepass) {
+        CHECK_LT(s.PixelIndex(pPixel), s.planned.size());
+        // pbrt has already set a NaN or infinite radiance to black.
+        s.values[s.PixelIndex(pPixel) * s.prepass + sampleIndex] =
+            std::isfinite(luminance) ? double(luminance) : 0.0;
+        return Float(s.prepassWeight / s.prepass);
+    }
+    return Float((1.0 - s.prepassWeight) / s.main);
+}
+
+namespace {
+
+// The pre-pass values of the block around p in the order of a domain's
+// pre-pass points: the film's order is the sample order, the light's the
+// permuted one (Shared::LightIndex).
+void FillBlock(const AlignedSampler::Shared &s, pbrt_alignset::Domain d, Point2i p,
+               std::vector<double> &values, std::vector<const double *> &block);
+
+}  // namespace
+
+void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension) {
+    Shared &s = *shared;
+    Local &l = *local;
+    l.sampleIndex = sampleIndex;
+    l.dimension = dimension;
+    const int pass = sampleIndex < s.prepass ? kPassPrepass : kPassMain;
+    if (p == l.pixel && pass == l.pass)
+        return;
+    l.pixel = p;
+    l.pass = pass;
+    if (s.values.empty())
+        ErrorExit("The \"aligned\" sampler runs only under an integrator that "
+                  "renders in pbrt's image tiles (\"path\", \"volpath\", ...).");
+    const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
+    if (pass == kPassPrepass) {
+        l.filmPoints.resize(s.prepass);
+        l.lightPoints.resize(s.prepass);
+        s.planner->PrepassPoints(kFilm, x, y, l.filmPoints.data(), *l.scratch);
+        s.planner->PrepassPoints(kLight, x, y, l.lightPoints.data(), *l.scratch);
+        return;
+    }
+    // The pixel's plans, once: its first main sample (the pre-pass wave has
+    // finished for every pixel before any main sample starts).
+    const size_t index = s.PixelIndex(p);
+    if (!s.planned[index]) {
+        for (pbrt_alignset::Domain d : {kFilm, kLight}) {
+            if (d == kFilm ? !s.AlignsFilm() : !s.AlignsLight())
+                continue;  // the default plan: the pixel's own Owen-Sobol points
+            FillBlock(s, d, p, l.blockValues, l.block);
+            if (s.planner->Plan(d, index, x, y, l.block.data(), *l.scratch) > 0)
+                ++(d == kFilm ? nFilmDirection : nLightDirection);
+        }
+        s.planned[index] = 1;
+        ++nPlanned;
+    }
+    l.filmPoints.resize(s.main);
+    l.lightPoints.resize(s.main);
+    s.planner->MainPoints(kFilm, index, l.filmPoints.data(), *l.scratch);
+    s.planner->MainPoints(kLight, index, l.lightPoints.data(), *l.scratch);
+    l.third = 0;
+    if (s.pairWavelength) {
+        if (s.AlignsFilm() && (l.third = s.planner->ThirdMultiplier(kFilm, index)) != 0)
+            l.thirdDomain = kFilm;
+        else if (s.AlignsLight() && (l.third = s.planner->ThirdMultiplier(kLight, index)) != 0)
+            l.thirdDomain = kLight;
+        l.thirdShift = double(Hash(p, s.seed, 0x77617665) >> 11) * 0x1p-53;
+    }
+}
+
+namespace {
+
+Float Padded(const AlignedSampler::Shared &s, Point2i pixel, int pass, int index,
+             int count, int dimension, int component) {
+    uint64_t hash = Hash(pixel, pass, dimension, s.seed);
+    uint32_t i = PermutationElement(uint32_t(index), uint32_t(count), uint32_t(hash));
+    return SobolSample(i, component, FastOwenScrambler(uint32_t(hash >> 32) ^ component));
+}
+
+}  // namespace
+
+Float AlignedSampler::Get1D() {
+    const Shared &s = *shared;
+    Local &l = *local;
+    const bool pre = l.pass == kPassPrepass;
+    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
+    const int dim = l.dimension++;
+    if (!pre && dim == kWavelengthDimension && l.third != 0) {
+        // The lattice index of this sample's point in the set it pairs with.
+        const uint64_t k = l.thirdDomain == kFilm
+                               ? uint64_t(i)
+                               : uint64_t(s.LightIndex(l.pixel, l.pass, i, s.main));
+        double u = double((k * l.third) % uint64_t(s.main)) / s.main + l.thirdShift;
+        u -= std::floor(u);
+        return std::min(Float(u), OneMinusEpsilon);
+    }
+    return Padded(s, l.pixel, l.pass, i, pre ? s.prepass : s.main, dim, 0);
+}
+
+Point2f AlignedSampler::Get2D() {
+    const Shared &s = *shared;
+    Local &l = *local;
+    const bool pre = l.pass == kPassPrepass;
+    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
+    const int count = pre ? s.prepass : s.main;
+    const int dim = l.dimension;
+    l.dimension += 2;
+    if (dim == s.lightDimension && s.AlignsLight()) {
+        const Point &q = l.lightPoints[s.LightIndex(l.pixel, l.pass, i, count)];
+        return Point2f(Float(q.x), Float(q.y));
+    }
+    return Point2f(Padded(s, l.pixel, l.pass, i, count, dim, 0),
+                   Padded(s, l.pixel, l.pass, i, count, dim, 1));
+}
+
+Point2f AlignedSampler::GetPixel2D() {
+    const Shared &s = *shared;
+    Local &l = *local;
+    const bool pre = l.pass == kPassPrepass;
+    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
+    if (s.AlignsFilm()) {
+        const Point &q = l.filmPoints[i];
+        return Point2f(Float(q.x), Float(q.y));
+    }
+    const int count = pre ? s.prepass : s.main;
+    constexpr int kPixelDimension = -2;  // a dimension of its own, as pbrt's samplers keep
+    return Point2f(Padded(s, l.pixel, l.pass, i, count, kPixelDimension, 0),
+                   Padded(s, l.pixel, l.pass, i, count, kPixelDimension, 1));
+}
+
+namespace {
+
+void FillBlock(const AlignedSampler::Shared &s, pbrt_alignset::Domain d, Point2i p,
+               std::vector<double> &values, std::vector<const double *> &block) {
+    const int r = s.planner->BlockRadius(d), side = s.planner->BlockSide(d);
+    const int m = s.prepass;
+    values.resize(size_t(side) * side * m);
+    block.assign(size_t(side) * side, nullptr);
+    for (int k = 0; k < side * side; ++k) {
+        Point2i q(p.x + k % side - r, p.y + k / side - r);
+        // Pixel bounds exclude their pMax (pbrt's Inside would include it).
+        if (!InsideExclusive(q, s.bounds))
+            continue;
+        CHECK_LT(s.PixelIndex(q), s.planned.size());
+        const double *v = &s.values[s.PixelIndex(q) * m];
+        double *out = &values[size_t(k) * m];
+        if (d == kFilm)
+            std::copy(v, v + m, out);
+        else
+            for (int i = 0; i < m; ++i)
+                out[s.LightIndex(q, kPassPrepass, i, m)] = v[i];
+        block[k] = out;
+    }
+}
+
+}  // namespace
+
+Sampler AlignedSampler::Clone(Allocator alloc) {
+    return alloc.new_object<AlignedSampler>(*this);
+}
+
+std::string AlignedSampler::ToString() const {
+    const Shared &s = *shared;
+    return StringPrintf("[ AlignedSampler table: %s construction: %s samplesPerPixel: %d "
+                        "prepass: %d main: %d seed: %d lightDimension: %d pairWavelength: %s ]",
+                        s.tablePath, s.construction, s.samplesPerPixel, s.prepass, s.main,
+                        s.seed, s.lightDimension, s.pairWavelength);
+}
+
+AlignedSampler *AlignedSampler::Create(const ParameterDictionary &parameters,
+                                       Point2i fullResolution, const FileLoc *loc,
+                                       Allocator alloc) {
+    auto s = std::make_shared<Shared>();
+    s->samplesPerPixel = parameters.GetOneInt("pixelsamples", 256);
+    if (Options->pixelSamples)
+        s->samplesPerPixel = *Options->pixelSamples;
+    if (Options->quickRender)
+        ErrorExit(loc, "aligned: --quick renders one sample a pixel; the aligned "
+                       "sampler needs a pre-pass. Use another sampler for a quick look.");
+    if (Options->useGPU || Options->wavefront)
+        ErrorExit(loc, "aligned: the sampler runs in pbrt's CPU tile renderer only "
+                       "(not with --gpu or --wavefront).");
+    s->seed = parameters.GetOneInt("seed", Options->seed);
+    s->lightDimension = parameters.GetOneInt("lightdimension", 5);
+    s->pairWavelength = parameters.GetOneBool("pairwavelength", true);
+    s->construction = parameters.GetOneString("construction", "lattice");
+    std::string aligned = parameters.GetOneString("align", "film+light");
+    if (aligned == "film+light")
+        s->aligned = Aligned::kFilmAndLight;
+    else if (aligned == "film")
+        s->aligned = Aligned::kFilm;
+    else if (aligned == "light")
+        s->aligned = Aligned::kLight;
+    else if (aligned == "none")
+        s->aligned = Aligned::kNone;
+    else
+        ErrorExit(loc, "aligned: \"align\" is \"%s\"; it must be \"film+light\", \"film\", "
+                       "\"light\" or \"none\".", aligned);
+    const int t = s->samplesPerPixel;
+    s->prepass = parameters.GetOneInt("prepasssamples", t / 4);
+    s->main = t - s->prepass;
+    if (s->prepass < 16 || s->main < 1)
+        ErrorExit(loc, "aligned: %d samples a pixel with a pre-pass of %d leave no room "
+                       "for both: the pre-pass needs at least 16 samples and the main "
+                       "samples at least one (at the default pre-pass of a quarter, at "
+                       "least 64 samples a pixel).", t, s->prepass);
+
+    s->tablePath = parameters.GetOneString("table", "");
+    if (s->tablePath.empty())
+        ErrorExit(loc, "aligned: no \"string table\": the sampler reads its sets from a "
+                       "table file that `alignset export` writes (docs/sampler.md).");
+    s->tablePath = ResolveFilename(s->tablePath);
+    Planner::Config config;
+    config.table = s->tablePath;
+    config.construction = s->construction;
+    config.prepass = s->prepass;
+    config.main = s->main;
+    config.imageWidth = std::max(fullResolution.x, 1);
+    config.stackRadius = parameters.GetOneInt("stackradius", 0);
+    // pbrt's wavelengths of a sample lie at u + j / NSpectrumSamples.
+    config.thirdHarmonic = NSpectrumSamples;
+    if (config.stackRadius < 0 || config.stackRadius > 4)
+        ErrorExit(loc, "aligned: \"stackradius\" is %d; it must be 0 (the library's choice) to 4.",
+                  config.stackRadius);
+    config.seed[kFilm] = Hash(s->seed, 0x66696c6d);
+    config.seed[kLight] = Hash(s->seed, 0x6c696768);
+    std::string error;
+    s->planner = Planner::Create(config, &error);
+    if (!s->planner)
+        ErrorExit(loc, "aligned: the table \"%s\" for %d samples a pixel (a pre-pass of %d "
+                       "and %d main samples): %s",
+                  s->tablePath, t, s->prepass, s->main, error);
+    s->prepassWeight = s->planner->PrepassWeight();
+    return alloc.new_object<AlignedSampler>(std::move(s));
+}
+
+}  // namespace pbrt

@@ -1,0 +1,3 @@
+// Debian installs qoi.h at the top of the include path.
+#pragma once
+#include <qoi.h>
