@@ -36,9 +36,11 @@ cmake --build "$BUILD_DIR" -j "$JOBS" --target alignset_sampler > "$OUT/alignset
 cmake --install "$BUILD_DIR" --prefix "$OUT/alignset" > "$OUT/alignset-install.log" 2>&1 \
   || { tail -30 "$OUT/alignset-install.log"; fail "installing alignset failed (build everything: scripts/build.sh)"; }
 
-# 2. The stamp: pbrt's sources, the integration's files, the installed library.
+# 2. The stamp: pbrt's sources, what of the integration goes into the build, the
+# installed library.
 stamp="$( { find "$SRC/src" "$SRC/cmake" -type f -printf '%P %s %T@\n' | sort;
-            find "$HERE" -type f -not -path "$HERE/scenes/*" -print0 | sort -z | xargs -0 sha256sum;
+            find "$HERE/CMakeLists.txt" "$HERE/aligned-sampler.patch" "$HERE/build.sh" "$HERE/src" "$HERE/standins" \
+              -type f -print0 | sort -z | xargs -0 sha256sum;
             find "$OUT/alignset" -type f -print0 | sort -z | xargs -0 sha256sum; } | sha256sum | cut -d' ' -f1)"
 if [ -x "$OUT/bin/pbrt" ] && [ "$(cat "$OUT/stamp" 2>/dev/null)" = "$stamp" ]; then
   echo "pbrt-v4/build.sh: $OUT/bin/pbrt is up to date"
