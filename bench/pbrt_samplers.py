@@ -109,6 +109,8 @@ class Renderer:
             for k, v in (params or {}).items():
                 if isinstance(v, bool):
                     extra += f' "bool {k}" [ {str(v).lower()} ]'
+                elif isinstance(v, int):
+                    extra += f' "integer {k}" [ {v} ]'
                 else:
                     extra += f' "string {k}" [ "{v}" ]'
         # The count and the seed on pbrt's command line, which every sampler
