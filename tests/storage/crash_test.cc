@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <set>
 #include <cstdio>
@@ -54,9 +55,34 @@ constexpr int kGenerations = 8;
   }
 }
 
+// How long one Put of the writer's takes on this machine and build: the
+// kills' window is in these units, so a slow build (a sanitizer's) still
+// lets the writers commit several generations between kills.
+std::chrono::microseconds MeanPutTime(const std::string& path) {
+  auto cache = SetCache::Open(path);
+  EXPECT_TRUE(cache.ok()) << cache.status().ToString();
+  if (!cache.ok()) return std::chrono::microseconds(1000);
+  std::vector<SetRecord> records;
+  for (const SetKey& key : Keys()) records.push_back(MakeRecord(key, 1));
+  const auto start = std::chrono::steady_clock::now();
+  constexpr int kPasses = 2;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    for (const SetRecord& rec : records) EXPECT_TRUE((*cache)->Put(rec).ok());
+  }
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  return std::chrono::duration_cast<std::chrono::microseconds>(elapsed) / (kPasses * records.size());
+}
+
 TEST(CrashSafety, SigkillDuringWritesNeverCorrupts) {
   TempDir dir;
   const std::string path = dir.File("c.sqlite");
+  // Kills land from a quarter of a write to about twelve writes after the
+  // writer starts (with at least the 1 ms this test has always waited).
+  const std::chrono::microseconds put = MeanPutTime(path);
+  const auto earliest = std::max<std::chrono::microseconds>(std::chrono::microseconds(1000), put / 4);
+  const uint32_t span_us = static_cast<uint32_t>(std::max<int64_t>(30000, 12 * put.count()));
+  std::printf("one Put: %lld us; kills %lld us + up to %u us after the writer starts\n",
+              static_cast<long long>(put.count()), static_cast<long long>(earliest.count()), span_us);
   Pcg32 rng(2024);
   constexpr int kRounds = 24;
   std::set<std::pair<std::string, int>> seen;  // (key, generation) found stored
@@ -73,7 +99,7 @@ TEST(CrashSafety, SigkillDuringWritesNeverCorrupts) {
     char byte = 0;
     ASSERT_EQ(read(fds[0], &byte, 1), 1) << "writer did not start";
     close(fds[0]);
-    std::this_thread::sleep_for(std::chrono::microseconds(1000 + rng.Uniform(30000)));
+    std::this_thread::sleep_for(earliest + std::chrono::microseconds(rng.Uniform(span_us)));
     ASSERT_EQ(kill(pid, SIGKILL), 0);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
