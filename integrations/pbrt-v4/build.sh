@@ -77,6 +77,8 @@ if [ ! -f "$SRC/src/pbrt/util/bluenoise.cpp" ]; then
     'PBRT_CONST uint16_t BlueNoiseTextures[NumBlueNoiseTextures][BlueNoiseResolution][BlueNoiseResolution] = {};' \
     '}' > "$STAGE/bluenoise.cpp"
   put "$STAGE/bluenoise.cpp" "$OUT/overlay/src/pbrt/util/bluenoise.cpp"
+else
+  rm -f "$OUT/overlay/src/pbrt/util/bluenoise.cpp"  # an overlay file is compiled instead of pbrt's
 fi
 if [ ! -f "$SRC/src/pbrt/util/pmj02tables.cpp" ]; then
   echo "pbrt-v4/build.sh: $SRC lacks src/pbrt/util/pmj02tables.cpp: a stand-in of zeros; this pbrt refuses the pmj02bn sampler"
@@ -85,6 +87,8 @@ if [ ! -f "$SRC/src/pbrt/util/pmj02tables.cpp" ]; then
     'PBRT_CONST uint32_t pmj02bnSamples[nPMJ02bnSets][nPMJ02bnSamples][2] = {};' \
     '}' > "$STAGE/pmj02tables.cpp"
   put "$STAGE/pmj02tables.cpp" "$OUT/overlay/src/pbrt/util/pmj02tables.cpp"
+else
+  rm -f "$OUT/overlay/src/pbrt/util/pmj02tables.cpp"
 fi
 
 # 4. pbrt, with ccache where Debian's ccache is installed.

@@ -6,7 +6,6 @@
 #include <alignset/aligned_sampler.h>
 #include <alignset/set_table.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <numeric>
@@ -27,8 +26,6 @@ struct Planner::Impl {
     alignset::AlignedSampler sampler[2];
     std::vector<alignset::PixelPlan> plans[2];
     std::vector<uint32_t> third[2];  // ThirdMultiplier per pixel
-    std::atomic<uint64_t> pixels[2] = {0, 0}, withDirection[2] = {0, 0}, twoDirections[2] = {0, 0},
-                          pairFellBack[2] = {0, 0};
 };
 
 Planner::Planner(std::unique_ptr<Impl> impl) : impl(std::move(impl)) {}
@@ -178,13 +175,6 @@ int Planner::Plan(Domain d, size_t pixel, uint32_t x, uint32_t y, const double *
         impl->third[d][pixel] =
             ChooseThird(plan->set.n, plan->set.lattice_generator, normals, count, impl->config.thirdHarmonic);
     }
-    impl->pixels[d].fetch_add(1, std::memory_order_relaxed);
-    if (plan->directions > 0)
-        impl->withDirection[d].fetch_add(1, std::memory_order_relaxed);
-    if (plan->directions > 1)
-        impl->twoDirections[d].fetch_add(1, std::memory_order_relaxed);
-    if (plan->pair_fell_back)
-        impl->pairFellBack[d].fetch_add(1, std::memory_order_relaxed);
     return plan->directions;
 }
 
@@ -198,15 +188,6 @@ void Planner::MainPoints(Domain d, size_t pixel, Point *out, Scratch &scratch) c
 
 uint32_t Planner::ThirdMultiplier(Domain d, size_t pixel) const {
     return impl->third[d][pixel];
-}
-
-Planner::Counts Planner::counts(Domain d) const {
-    Counts c;
-    c.pixels = impl->pixels[d].load();
-    c.withDirection = impl->withDirection[d].load();
-    c.twoDirections = impl->twoDirections[d].load();
-    c.pairFellBack = impl->pairFellBack[d].load();
-    return c;
 }
 
 }  // namespace pbrt_alignset

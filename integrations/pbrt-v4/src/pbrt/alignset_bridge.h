@@ -37,10 +37,6 @@ class Planner {
     };
     // Per thread: the library's buffers and a point buffer.
     struct Scratch;
-    struct Counts {
-        uint64_t pixels = 0, withDirection = 0, twoDirections = 0, pairFellBack = 0;
-    };
-
     // nullptr, with *error naming the problem (the table's own message, or
     // the N it lacks), when the table or the counts cannot serve.
     static std::unique_ptr<Planner> Create(const Config &config, std::string *error);
@@ -72,8 +68,6 @@ class Planner {
     // term that a random pairing of a step and a smooth function leaves.
     // 0 where the pixel's points are not a lattice.
     uint32_t ThirdMultiplier(Domain d, size_t pixel) const;
-    // What the plans of a domain found, over every thread.
-    Counts counts(Domain d) const;
 
   private:
     struct Impl;

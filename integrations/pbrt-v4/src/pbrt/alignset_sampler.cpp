@@ -83,6 +83,11 @@ struct AlignedSampler::Local {
     Point2i pixel{-1, -1};
     int pass = -1;  // the pass the cached points below are of
     int sampleIndex = 0, dimension = 0;
+    // The sample's index within its pass, and the pass's sample count.
+    int IndexInPass(const Shared &s) const {
+        return pass == kPassPrepass ? sampleIndex : sampleIndex - s.prepass;
+    }
+    int PassCount(const Shared &s) const { return pass == kPassPrepass ? s.prepass : s.main; }
     std::vector<Point> filmPoints, lightPoints;
     // The main pass's wavelength sample as a third lattice coordinate
     // (Planner::ThirdMultiplier) of the film set or, without one, the light
@@ -158,11 +163,14 @@ void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension)
         ErrorExit("The \"aligned\" sampler runs only under an integrator that "
                   "renders in pbrt's image tiles (\"path\", \"volpath\", ...).");
     const uint32_t x = uint32_t(p.x), y = uint32_t(p.y);
+    // Points only for the aligned dimensions: the others are padded.
     if (pass == kPassPrepass) {
         l.filmPoints.resize(s.prepass);
         l.lightPoints.resize(s.prepass);
-        s.planner->PrepassPoints(kFilm, x, y, l.filmPoints.data(), *l.scratch);
-        s.planner->PrepassPoints(kLight, x, y, l.lightPoints.data(), *l.scratch);
+        if (s.AlignsFilm())
+            s.planner->PrepassPoints(kFilm, x, y, l.filmPoints.data(), *l.scratch);
+        if (s.AlignsLight())
+            s.planner->PrepassPoints(kLight, x, y, l.lightPoints.data(), *l.scratch);
         return;
     }
     // The pixel's plans, once: its first main sample (the pre-pass wave has
@@ -171,7 +179,7 @@ void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension)
     if (!s.planned[index]) {
         for (pbrt_alignset::Domain d : {kFilm, kLight}) {
             if (d == kFilm ? !s.AlignsFilm() : !s.AlignsLight())
-                continue;  // the default plan: the pixel's own Owen-Sobol points
+                continue;  // padded instead
             FillBlock(s, d, p, l.blockValues, l.block);
             if (s.planner->Plan(d, index, x, y, l.block.data(), *l.scratch) > 0)
                 ++(d == kFilm ? nFilmDirection : nLightDirection);
@@ -181,8 +189,10 @@ void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension)
     }
     l.filmPoints.resize(s.main);
     l.lightPoints.resize(s.main);
-    s.planner->MainPoints(kFilm, index, l.filmPoints.data(), *l.scratch);
-    s.planner->MainPoints(kLight, index, l.lightPoints.data(), *l.scratch);
+    if (s.AlignsFilm())
+        s.planner->MainPoints(kFilm, index, l.filmPoints.data(), *l.scratch);
+    if (s.AlignsLight())
+        s.planner->MainPoints(kLight, index, l.lightPoints.data(), *l.scratch);
     l.third = 0;
     if (s.pairWavelength) {
         if (s.AlignsFilm() && (l.third = s.planner->ThirdMultiplier(kFilm, index)) != 0)
@@ -207,10 +217,9 @@ Float Padded(const AlignedSampler::Shared &s, Point2i pixel, int pass, int index
 Float AlignedSampler::Get1D() {
     const Shared &s = *shared;
     Local &l = *local;
-    const bool pre = l.pass == kPassPrepass;
-    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
+    const int i = l.IndexInPass(s);
     const int dim = l.dimension++;
-    if (!pre && dim == kWavelengthDimension && l.third != 0) {
+    if (l.pass == kPassMain && dim == kWavelengthDimension && l.third != 0) {
         // The lattice index of this sample's point in the set it pairs with.
         const uint64_t k = l.thirdDomain == kFilm
                                ? uint64_t(i)
@@ -219,15 +228,13 @@ Float AlignedSampler::Get1D() {
         u -= std::floor(u);
         return std::min(Float(u), OneMinusEpsilon);
     }
-    return Padded(s, l.pixel, l.pass, i, pre ? s.prepass : s.main, dim, 0);
+    return Padded(s, l.pixel, l.pass, i, l.PassCount(s), dim, 0);
 }
 
 Point2f AlignedSampler::Get2D() {
     const Shared &s = *shared;
     Local &l = *local;
-    const bool pre = l.pass == kPassPrepass;
-    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
-    const int count = pre ? s.prepass : s.main;
+    const int i = l.IndexInPass(s), count = l.PassCount(s);
     const int dim = l.dimension;
     l.dimension += 2;
     if (dim == s.lightDimension && s.AlignsLight()) {
@@ -241,13 +248,11 @@ Point2f AlignedSampler::Get2D() {
 Point2f AlignedSampler::GetPixel2D() {
     const Shared &s = *shared;
     Local &l = *local;
-    const bool pre = l.pass == kPassPrepass;
-    const int i = pre ? l.sampleIndex : l.sampleIndex - s.prepass;
+    const int i = l.IndexInPass(s), count = l.PassCount(s);
     if (s.AlignsFilm()) {
         const Point &q = l.filmPoints[i];
         return Point2f(Float(q.x), Float(q.y));
     }
-    const int count = pre ? s.prepass : s.main;
     constexpr int kPixelDimension = -2;  // a dimension of its own, as pbrt's samplers keep
     return Point2f(Padded(s, l.pixel, l.pass, i, count, kPixelDimension, 0),
                    Padded(s, l.pixel, l.pass, i, count, kPixelDimension, 1));
