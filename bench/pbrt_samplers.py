@@ -135,17 +135,22 @@ class Renderer:
         return img, seconds
 
 
-def edge_mask(ref, tau):
-    y = luminance(ref)
-    scale = np.percentile(y, 99)
+def neighbour_jump(y):
+    """Each pixel's largest absolute difference from its eight neighbours'
+    values (the image's border repeated)."""
     h, w = y.shape
-    diff = np.zeros_like(y)
+    jump = np.zeros_like(y)
     pad = np.pad(y, 1, mode="edge")
     for dy in (-1, 0, 1):
         for dx in (-1, 0, 1):
             if dx or dy:
-                diff = np.maximum(diff, np.abs(y - pad[1 + dy:1 + dy + h, 1 + dx:1 + dx + w]))
-    return diff > tau * scale
+                jump = np.maximum(jump, np.abs(y - pad[1 + dy:1 + dy + h, 1 + dx:1 + dx + w]))
+    return jump
+
+
+def edge_mask(ref, tau):
+    y = luminance(ref)
+    return neighbour_jump(y) > tau * np.percentile(y, 99)
 
 
 def pixel_errors(img, ref):

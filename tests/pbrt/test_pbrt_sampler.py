@@ -28,15 +28,9 @@ import numpy as np
 SKIP = 77
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENE = os.path.join(HERE, "tiny_edges.pbrt")
-
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        f.readline()
-        w, h = (int(x) for x in f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    return data.reshape(h, w, 3)[::-1].astype(np.float64)
+# The benchmark's PFM reader and edge rule (bench/pbrt_samplers.py).
+sys.path.insert(0, os.path.join(HERE, "..", "..", "bench"))
+from pbrt_samplers import luminance, neighbour_jump, read_pfm  # noqa: E402
 
 
 class Pbrt:
@@ -92,12 +86,8 @@ def main():
         ref_a = pbrt.image(zsobol, 16384, 9001)
         ref_b = pbrt.image(zsobol, 16384, 9002)
         ref = 0.5 * (ref_a + ref_b)
-        y = ref @ np.array([0.2126, 0.7152, 0.0722])
-        pad = np.pad(y, 1, mode="edge")
-        jump = np.zeros_like(y)
-        for dy in (-1, 0, 1):
-            for dx in (-1, 0, 1):
-                jump = np.maximum(jump, np.abs(y - pad[1 + dy:25 + dy, 1 + dx:25 + dx]))
+        y = luminance(ref)
+        jump = neighbour_jump(y)
         edge = jump > 0.03 * np.percentile(y, 99)
         print(f"edge pixels: {int(edge.sum())} of {edge.size}")
         check(edge.sum() >= 40, f"the scene has edge pixels to judge ({int(edge.sum())} >= 40)")
@@ -107,9 +97,8 @@ def main():
         # mixed edge pixels of the largest jumps, the mean within 3 standard errors
         # of the reference (the reference's own, from its two halves, added).
         # The seeds are fixed, so the test is deterministic for a build.
-        lum = np.array([0.2126, 0.7152, 0.0722])
         seeds = 48
-        means = np.array([pbrt.image(aligned, 64, s) @ lum for s in range(1, seeds + 1)])
+        means = np.array([luminance(pbrt.image(aligned, 64, s)) for s in range(1, seeds + 1)])
         # Mixed pixels: an edge through them (a value between the two sides'),
         # not a black shadow beside a lit one.
         mixed = edge & (y > 0.2 * np.percentile(y, 99)) & (y < 0.8 * np.percentile(y, 99))
@@ -120,9 +109,9 @@ def main():
             py, px = divmod(int(flat), 24)
             vals = means[:, py, px]
             se = vals.std(ddof=1) / np.sqrt(seeds)
-            ref_se = abs(float((ref_a[py, px] - ref_b[py, px]) @ lum)) / 2.0
-            z = abs(vals.mean() - float(ref[py, px] @ lum)) / np.sqrt(se ** 2 + ref_se ** 2 + 1e-30)
-            print(f"pixel ({px}, {py}): mean {vals.mean():.5f}, reference {float(ref[py, px] @ lum):.5f}, "
+            ref_se = abs(float(luminance(ref_a[py, px] - ref_b[py, px]))) / 2.0
+            z = abs(vals.mean() - float(y[py, px])) / np.sqrt(se ** 2 + ref_se ** 2 + 1e-30)
+            print(f"pixel ({px}, {py}): mean {vals.mean():.5f}, reference {float(y[py, px]):.5f}, "
                   f"{z:.2f} standard errors")
             worst = max(worst, float(z))
         check(worst < 3.0, f"aligned's mean over {seeds} seeds within 3 standard errors of the reference "
