@@ -154,7 +154,8 @@ void AddExportCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(IntegerIn(kMinPoints, kMaxPoints));
   c->add_option("--construction", o->constructions,
-                "constructions, comma-separated: lattice (default), tent-lattice, optimized, net")
+                "constructions, comma-separated: lattice (default), tent-lattice, optimized, net,\n"
+                "lattice-sequence (stored as points: export the largest N a pixel may reach)")
       ->delimiter(',')
       ->check(ConstructionName());
   c->add_option("--space", o->spaces, "key spaces, comma-separated: 1dir (default; 46 keys), 1dir-quarter (181), 2dir (4141)")

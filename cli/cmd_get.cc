@@ -315,8 +315,9 @@ void AddGetCommand(CLI::App& app) {
   c->add_option("--construction", o->construction,
                 "optimized (the server's optimized sets), lattice (an aligned rank-1\n"
                 "lattice), tent-lattice (the lattice folded by 1 - |2u - 1| after its shift)\n"
-                "or net (an aligned (0,m,2)-net, N a power of two); each cached apart from\n"
-                "the others")
+                "net (an aligned (0,m,2)-net, N a power of two) or lattice-sequence (the\n"
+                "first N points of an aligned lattice sequence: a pixel may stop after any\n"
+                "prefix); each cached apart from the others")
       ->capture_default_str()
       ->check(ConstructionName());
   c->add_flag("-q,--quiet", o->quiet, "no progress display");

@@ -13,6 +13,7 @@
 #include "core/optimize/aligned_lattice.h"
 #include "core/optimize/aligned_net.h"
 #include "core/optimize/construction.h"
+#include "core/optimize/lattice_sequence.h"
 #include "core/optimize/optimizer.h"
 #include "core/spectral/direction_budget.h"
 #include "core/spectral/scaled_loss_engine.h"
@@ -166,6 +167,52 @@ int RunNet(const OptimizeOptions& o, const Construction& made) {
   return WriteConstructed(o, points, comment, dir_text, what, seconds);
 }
 
+// --construction lattice-sequence: one search for the directions (any N
+// reads the same sequence), then -m realizations of its first N points; the
+// prefixes' excess over the fixed-size lattices goes to stderr, so a user
+// sees how far from the best lattice of each size the sequence is.
+int RunSequence(const OptimizeOptions& o, const Construction& made) {
+  LatticeSequenceOptions options;
+  options.window_deg = o.window.value_or(made.window_deg);
+  options.threads = static_cast<int>(o.threads);
+  const uint32_t n = static_cast<uint32_t>(o.n);
+  if (Status s = made.ValidateSize(n); !s.ok()) return Usage(s);
+  if (!IsStdStream(o.out)) {
+    if (Status s = WritePointFile(o.out, {}, "alignset: construction in progress"); !s.ok()) {
+      return Failure(s);
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  auto choice = ChooseLatticeSequenceGenerator(o.dirs, options);
+  if (!choice.ok()) return Usage(choice.status());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::fprintf(stderr, "lattice sequence generator %u: prefix score - fixed-size lattice score (log ratio)\n",
+               choice->generator);
+  for (const LatticeSequenceLevel& level : choice->levels) {
+    std::fprintf(stderr, "  N=%-6u %+.3f  (x%.2f; fixed-size generator %u)\n", level.n, level.excess(),
+                 std::exp(level.excess()), level.fixed_generator);
+  }
+  const std::string dir_text = DirectionsText(o.dirs);
+  const int sets = o.sets.value_or(1);
+  std::vector<PointSet> points;
+  std::string comment;
+  for (int i = 0; i < sets; ++i) {
+    const uint64_t seed = o.seed + static_cast<uint64_t>(i);
+    points.push_back(LatticeSequencePoints(n, choice->generator, seed));
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "%salignset aligned lattice sequence%s: N=%u directions(deg, edge normal)=%s generator=%u "
+                  "window=%g seed=%llu",
+                  i ? "\n" : "", sets > 1 ? (" " + std::to_string(i)).c_str() : "", n, dir_text.c_str(),
+                  choice->generator, options.window_deg, static_cast<unsigned long long>(seed));
+    comment += line;
+  }
+  char what[160];
+  std::snprintf(what, sizeof(what), "aligned rank-1 lattice sequence, generator %u (window +-%g deg)",
+                choice->generator, options.window_deg);
+  return WriteConstructed(o, points, comment, dir_text, what, seconds);
+}
+
 int RunOptimize(const OptimizeOptions& o) {
   if (o.dirs.size() > static_cast<size_t>(kMaxArbitraryDirections)) {
     return Usage(Status::InvalidArgument(
@@ -190,6 +237,7 @@ int RunOptimize(const OptimizeOptions& o) {
   const Construction& construction = *FindConstruction(o.construction);
   if (construction.lattice()) return RunLattice(o, construction);
   if (construction.kind == ConstructionKind::kNet) return RunNet(o, construction);
+  if (construction.kind == ConstructionKind::kLatticeSequence) return RunSequence(o, construction);
   auto kind = ParseEngineKind(o.engine);
   if (!kind.ok()) return Usage(kind.status());
   const bool supplement = o.profile == "supplement";
@@ -330,12 +378,14 @@ void AddOptimizeCommand(CLI::App& app) {
                 "rank-1 lattice: its generator chosen by the exact variance of step edges\n"
                 "within --window degrees of each direction), tent-lattice (the same lattice\n"
                 "folded by the tent 1 - |2u - 1| after its shift, its generator chosen for the\n"
-                "folded edges: no loss on smooth functions that are not periodic) or net (an\n"
-                "aligned (0,m,2)-net: its scrambling chosen for those edges; N a power of two)")
+                "folded edges: no loss on smooth functions that are not periodic), net (an\n"
+                "aligned (0,m,2)-net: its scrambling chosen for those edges; N a power of two)\n"
+                "or lattice-sequence (the first N points of an aligned lattice sequence, every\n"
+                "power-of-two prefix an aligned lattice: for adaptive sampling; N up to 65536)")
       ->capture_default_str()
       ->check(ConstructionName());
   c->add_option("--window", o->window,
-                "lattice, tent-lattice, net: the half-width in degrees of the window of edge\n"
+                "lattice, tent-lattice, net, lattice-sequence: the half-width in degrees of the window of edge\n"
                 "directions scored (default 1; tent-lattice 2)")
       ->check(FiniteIn(0.0, 10.0));
   c->add_option("--engine", o->engine, "spectral engine: auto, direct, fast or cuda")

@@ -130,8 +130,9 @@ void AddPrecomputeCommand(CLI::App& app) {
       ->check(CLI::IsMember({"1", "0.25"}));
   c->add_option("--construction", o->construction,
                 "optimized (the server's optimized sets), lattice (aligned rank-1 lattices),\n"
-                "tent-lattice (those lattices folded by 1 - |2u - 1| after their shift) or net\n"
-                "(aligned (0,m,2)-nets, N a power of two), each cached apart")
+                "tent-lattice (those lattices folded by 1 - |2u - 1| after their shift), net\n"
+                "(aligned (0,m,2)-nets, N a power of two) or lattice-sequence (aligned lattice\n"
+                "sequences, each key's sets at every N prefixes of one), each cached apart")
       ->capture_default_str()
       ->check(ConstructionName());
   AddServiceOptions(c, &o->service);

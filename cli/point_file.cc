@@ -260,6 +260,10 @@ StatusOr<std::vector<PointSet>> ReadPointSets(const std::string& path) {
     if (!in) return Status::InvalidArgument("cannot read " + path + ": " + std::strerror(errno));
     data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
+  return ParsePointSets(data, path);
+}
+
+StatusOr<std::vector<PointSet>> ParsePointSets(const std::string& data, const std::string& path) {
   const Format format = IsStdStream(path) ? Format::kText : FormatOf(path);
   auto sets = format == Format::kNpy   ? ParseNpy(data, path)
               : format == Format::kCsv ? ParseCsv(data, path)

@@ -42,6 +42,10 @@ Status WritePointFile(const std::string& path, const PointSet& points,
 
 // Every set in the file (at least one, none empty).
 StatusOr<std::vector<PointSet>> ReadPointSets(const std::string& path);
+// The same from a file's bytes, its format told by `path`'s extension (.npy,
+// .csv, anything else text; "-" text): what ReadPointSets parses, and what
+// the fuzzer feeds (fuzz/point_file_fuzzer.cc).
+StatusOr<std::vector<PointSet>> ParsePointSets(const std::string& data, const std::string& path);
 // Exactly one set; a file holding several is an error (for commands that
 // read one set).
 StatusOr<PointSet> ReadPointFile(const std::string& path);

@@ -71,6 +71,7 @@ StatusOr<AlignedSampler> AlignedSampler::Create(std::shared_ptr<const SetTable> 
   s.options_ = options;
   s.fit_ = *fit;
   s.weight_ = ::alignset::PrepassWeight(fo.prepass_samples, options.n);
+  s.progressive_ = construction->progressive();
   return s;
 }
 
@@ -161,7 +162,12 @@ double AlignedSampler::Estimate(const PixelPlan& plan, std::span<const double> p
                                 std::span<const double> main_values) const {
   const double pre = Mean(prepass_values), main = Mean(main_values);
   if (options_.reuse == PrepassReuse::kUnbiased || plan.main == PixelPlan::Main::kSet) {
-    return weight_ * pre + (1.0 - weight_) * main;
+    // A prefix of the main points (a pixel that stopped early) weighs the
+    // pre-pass as beside that many.
+    const double w = main_values.size() == options_.n
+                         ? weight_
+                         : alignset::PrepassWeight(prepass_samples(), static_cast<uint32_t>(main_values.size()));
+    return w * pre + (1.0 - w) * main;
   }
   if (plan.main == PixelPlan::Main::kOwenSobol) return main;  // after a lattice pre-pass: no sequence to continue
   return ContinuedEstimate(pre, static_cast<uint32_t>(prepass_values.size()), main_values);

@@ -267,6 +267,44 @@ int FirstRadius(uint32_t n) {
   return std::min(FullRadius(n), std::max(32, static_cast<int>(std::lround(8.0 * std::sqrt(n)))));
 }
 
+// The generators the first stage scores: every g coprime to N, a stride
+// subset above kFullSearchLimit.
+std::vector<uint32_t> SearchCandidates(uint32_t n) {
+  const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
+  std::vector<uint32_t> candidates;
+  for (uint32_t g = 1; g < n; g += stride) {
+    if (std::gcd(g, n) == 1) candidates.push_back(g);
+  }
+  return candidates;
+}
+
+size_t CoarseEdgeCount(double direction, const AlignedLatticeOptions& options) {
+  return ScoredPolygons({direction}, options.window_deg, 1, CoarseOffsets(options.folded), options.folded)
+      .front()
+      .size();
+}
+
+// One direction's first-stage terms for every candidate, from the cache or
+// computed into it.
+std::shared_ptr<const std::vector<LatticeTermCache::Terms>> CoarseTerms(
+    uint32_t n, double direction, const AlignedLatticeOptions& options, const std::vector<uint32_t>& candidates,
+    LatticeTermCache* cache, const std::function<void(double)>& within_pass) {
+  const LatticeTermCache::Key key{n, LatticeTermCache::Stage::kCoarse, options.window_deg, direction, options.folded};
+  if (auto held = cache->FindDense(key)) return held;
+  const Family f =
+      ScoredFamily({direction}, options.window_deg, 1, CoarseOffsets(options.folded), FirstRadius(n), options.folded);
+  auto terms = std::make_shared<std::vector<LatticeTermCache::Terms>>(candidates.size());
+  ParallelOver(
+      candidates.size(), options.threads, 16,
+      [&](size_t j) {
+        const Terms t = ScoreTerms(n, candidates[j], FirstRadius(n), f);
+        (*terms)[j] = {t.directions.front(), t.corner};
+      },
+      within_pass);
+  cache->PutDense(key, terms);
+  return terms;
+}
+
 }  // namespace
 
 StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
@@ -284,6 +322,30 @@ StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<d
                                                         CoarseOffsets(folded), r_first, folded);
   const Terms t = ScoreTerms(n, g, r_full, family);  // r_first is r_full where the coarse family is final
   return Combine(t.directions, family.Edges(), t.corner);
+}
+
+StatusOr<std::vector<double>> AlignedLatticeScores(uint32_t n, std::span<const uint32_t> generators,
+                                                  const std::vector<double>& directions_deg,
+                                                  const AlignedLatticeOptions& options) {
+  if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
+  for (uint32_t g : generators) {
+    if (g == 0 || g >= n || std::gcd(g, n) != 1) {
+      return Status::InvalidArgument("aligned lattice: g = " + std::to_string(g) +
+                                     " is not a generator coprime to N = " + std::to_string(n));
+    }
+  }
+  const int r_full = FullRadius(n), r_first = FirstRadius(n);
+  const bool folded = options.folded;
+  const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, WindowSteps(folded),
+                                                        FullOffsets(folded), r_full, folded)
+                                         : ScoredFamily(directions_deg, options.window_deg, 1,
+                                                        CoarseOffsets(folded), r_first, folded);
+  std::vector<double> scores(generators.size());
+  ParallelOver(generators.size(), options.threads, std::max<size_t>(1, 4096 / n), [&](size_t j) {
+    const Terms t = ScoreTerms(n, generators[j], r_full, family);
+    scores[j] = Combine(t.directions, family.Edges(), t.corner);
+  });
+  return scores;
 }
 
 StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
@@ -306,11 +368,7 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   using Stage = LatticeTermCache::Stage;
   const int r_full = FullRadius(n);
   const int r_first = FirstRadius(n);
-  const uint32_t stride = n > kFullSearchLimit ? (n + kFullSearchLimit - 1) / kFullSearchLimit : 1;
-  std::vector<uint32_t> candidates;
-  for (uint32_t g = 1; g < n; g += stride) {
-    if (std::gcd(g, n) == 1) candidates.push_back(g);
-  }
+  const std::vector<uint32_t> candidates = SearchCandidates(n);
   // The first stage sees a coarse family (the window's ends and middle, two
   // offsets): it only has to keep the finalists, and it scores every g. Its
   // terms are kept per direction, each computed once however many keys
@@ -334,23 +392,8 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
   std::vector<std::shared_ptr<const std::vector<Held>>> coarse(directions.size());
   std::vector<size_t> coarse_edges(directions.size());
   for (size_t i = 0; i < directions.size(); ++i) {
-    const Key key{n, Stage::kCoarse, options.window_deg, directions[i], options.folded};
-    coarse_edges[i] =
-        ScoredPolygons({directions[i]}, options.window_deg, 1, CoarseOffsets(folded), folded).front().size();
-    coarse[i] = cache->FindDense(key);
-    if (!coarse[i]) {
-      const Family f = ScoredFamily({directions[i]}, options.window_deg, 1, CoarseOffsets(folded), r_first, folded);
-      auto terms = std::make_shared<std::vector<Held>>(candidates.size());
-      ParallelOver(
-          candidates.size(), options.threads, 16,
-          [&](size_t j) {
-            const Terms t = ScoreTerms(n, candidates[j], r_first, f);
-            (*terms)[j] = {t.directions.front(), t.corner};
-          },
-          within_pass);
-      coarse[i] = terms;
-      cache->PutDense(key, std::move(terms));
-    }
+    coarse_edges[i] = CoarseEdgeCount(directions[i], options);
+    coarse[i] = CoarseTerms(n, directions[i], options, candidates, cache, within_pass);
     if (progress) progress(++done, total);
   }
   // Each key's directions as indices into `directions`.

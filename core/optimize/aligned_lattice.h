@@ -98,6 +98,14 @@ StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
 StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
                                      const AlignedLatticeOptions& options = {});
 
+// AlignedLatticeScore for each of several generators of the same N, the
+// scored family built once (what a search over extensions of a generator,
+// core/optimize/lattice_sequence.h, scores level by level); on
+// options.threads threads, each score the same as AlignedLatticeScore's.
+StatusOr<std::vector<double>> AlignedLatticeScores(uint32_t n, std::span<const uint32_t> generators,
+                                                  const std::vector<double>& directions_deg,
+                                                  const AlignedLatticeOptions& options = {});
+
 // The generator of the lattice that a symmetry of the square carries the
 // lattice of generator g onto, as a set of points up to a shift: swapping x
 // and y (first) takes g to its inverse mod N, inverting x or y (after) to

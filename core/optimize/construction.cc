@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/lattice_sequence.h"
 
 namespace alignset {
 namespace {
@@ -16,6 +17,8 @@ constexpr Construction kConstructions[] = {
     {ConstructionKind::kTentLattice, "tent-lattice", "tent-folded rank-1 lattice", 1, kTentLatticeWindowDeg,
      "tent-lattice-v1-w2"},
     {ConstructionKind::kNet, "net", "(0,m,2)-net", 1, 1.0, "net-v1-w1"},
+    {ConstructionKind::kLatticeSequence, "lattice-sequence", "rank-1 lattice sequence", 1, 1.0,
+     "lattice-sequence-v1-w1"},
 };
 
 }  // namespace
@@ -59,6 +62,10 @@ Status Construction::ValidateSize(uint32_t n) const {
   if (kind == ConstructionKind::kNet && (n < 16 || n > 65536 || (n & (n - 1)) != 0)) {
     return Status::InvalidArgument("construction 'net' needs N a power of two from 16 to 65536, got " +
                                    std::to_string(n));
+  }
+  if (kind == ConstructionKind::kLatticeSequence && (n < 16 || n > kLatticeSequenceMaxPoints)) {
+    return Status::InvalidArgument("construction 'lattice-sequence' needs N from 16 to " +
+                                   std::to_string(kLatticeSequenceMaxPoints) + ", got " + std::to_string(n));
   }
   return Status::Ok();
 }

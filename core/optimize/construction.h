@@ -36,12 +36,19 @@ enum class ConstructionKind {
   // whose scrambling is chosen for the window; realization r starts its
   // flips from seed r.
   kNet,
+  // An aligned lattice sequence (core/optimize/lattice_sequence.h): the
+  // first N points of one extensible rank-1 lattice whose every power-of-two
+  // prefix is an aligned lattice, its generator chosen for all sizes at once,
+  // so the set for N is the first N points of the set for any larger N (same
+  // directions and realization); realization r is a continuous shift drawn
+  // from seed r. N from 16 to 65536.
+  kLatticeSequence,
 };
 
 // A constructed (not optimized) canonical set.
 struct ConstructedSet {
   PointSet points;
-  uint32_t lattice_generator = 0;  // a lattice's generator g of (1, g) / N; 0 for a net
+  uint32_t lattice_generator = 0;  // a lattice's g of (1, g) / N, a sequence's of phi(i) (1, g); 0 for a net
   int iterations = 0;              // a net's sweeps
   std::string detail;              // one line for the log
 };
@@ -54,7 +61,7 @@ struct ConstructionContext {
 
 struct Construction {
   ConstructionKind kind;
-  std::string_view name;         // "optimized", "lattice", "tent-lattice", "net"
+  std::string_view name;         // "optimized", "lattice", "tent-lattice", "net", "lattice-sequence"
   std::string_view description;  // "aligned rank-1 lattice", for reports
   // Bump the version, and the profile with it, whenever the construction
   // would give a different set for the same key: the profile is part of the
@@ -67,9 +74,12 @@ struct Construction {
   bool optimized() const { return kind == ConstructionKind::kOptimized; }
   bool lattice() const { return kind == ConstructionKind::kLattice || kind == ConstructionKind::kTentLattice; }
   bool folded() const { return kind == ConstructionKind::kTentLattice; }
+  // Its set for N is the first N points of its set for any larger N, and each
+  // prefix is a good set of its own: a pixel may stop after any count.
+  bool progressive() const { return kind == ConstructionKind::kLatticeSequence; }
 
   // INVALID_ARGUMENT when it cannot make N points (a net needs a power of
-  // two from 16 to 65536).
+  // two from 16 to 65536, a lattice sequence N from 16 to 65536).
   Status ValidateSize(uint32_t n) const;
   // The canonical set for exact directions `directions_deg` (one or two
   // angles) and realization `seed`. Not for kOptimized (FAILED_PRECONDITION).
@@ -85,7 +95,8 @@ const Construction* FindConstruction(std::string_view name);
 // The construction whose keys a stored profile belongs to: kOptimized's for
 // any profile that is no construction's own.
 const Construction& ConstructionOfProfile(std::string_view profile);
-// "'optimized' (the default, also ''), 'lattice', 'tent-lattice' and 'net'",
+// "'optimized' (the default, also ''), 'lattice', 'tent-lattice', 'net' and
+// 'lattice-sequence'",
 // for an error that lists what is accepted.
 std::string KnownConstructionNames();
 

@@ -28,7 +28,9 @@ namespace alignset {
 // same entry both compute it and the second store is a no-op.
 class LatticeTermCache {
  public:
-  enum class Stage : uint8_t { kCoarse = 0, kFull = 1, kFullFamily = 2 };
+  // kSequence: a lattice sequence's whole choice (core/optimize/lattice_sequence.h),
+  // an object under n = 0: one search serves the key at every N.
+  enum class Stage : uint8_t { kCoarse = 0, kFull = 1, kFullFamily = 2, kSequence = 3 };
   struct Key {
     uint32_t n = 0;
     Stage stage = Stage::kCoarse;

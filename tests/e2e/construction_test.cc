@@ -25,6 +25,7 @@
 #include "core/analysis/integrands.h"
 #include "core/analysis/lattice_variance.h"
 #include "core/optimize/aligned_lattice.h"
+#include "core/optimize/lattice_sequence.h"
 #include "core/sampling/rank1_lattice.h"
 #include "tests/e2e/e2e_util.h"
 #include "tests/e2e/server_process.h"
@@ -551,6 +552,45 @@ TEST_F(Constructions, NetIsANetAtEveryPowerOfTwoAndTheSecondCallIsAHit) {
   EXPECT_EQ(refused.status().code(), Status::Code::kInvalidArgument);
   EXPECT_NE(refused.status().message().find("power of two"), std::string::npos) << refused.status().message();
   EXPECT_EQ(MustGet(*client_, 64, 45.0, "net").points.size(), 64u);  // still serving
+}
+
+
+// The lattice sequence by name: the set for N is the first N points of the
+// set for a larger N (same key, same realization), at the canonical 30
+// degrees the core's sequence for 30 degrees bit for bit, at 150 degrees its
+// mirror image; N outside [16, 65536] refused and the server keeps serving.
+TEST_F(Constructions, LatticeSequenceServesPrefixesOfOneSequence) {
+  const AlignedSet small = MustGet(*client_, 256, 30.0, "lattice-sequence");
+  const AlignedSet large = MustGet(*client_, 1024, 30.0, "lattice-sequence");
+  EXPECT_EQ(small.info.construction, "lattice-sequence");
+  EXPECT_EQ(small.info.profile, "lattice-sequence-v1-w1");
+  ASSERT_EQ(small.points.size(), 256u);
+  ASSERT_EQ(large.points.size(), 1024u);
+  for (size_t i = 0; i < small.points.size(); ++i) ASSERT_EQ(small.points[i], large.points[i]) << i;
+  auto choice = ChooseLatticeSequenceGenerator({30.0});
+  ASSERT_TRUE(choice.ok());
+  EXPECT_EQ(large.points, LatticeSequencePoints(1024, choice->generator, 0));
+  const AlignedSet mirrored = MustGet(*client_, 512, 150.0, "lattice-sequence");
+  ASSERT_EQ(mirrored.points.size(), 512u);
+  for (size_t i = 0; i < mirrored.points.size(); ++i) {
+    // x -> 1 - x (a point at x = 0 stays in the half-open square as the
+    // server's mirror keeps it).
+    const double d = std::fmod(mirrored.points[i].x + large.points[i].x, 1.0);
+    EXPECT_LT(std::min(d, 1.0 - d), 1e-12) << i;
+    EXPECT_EQ(mirrored.points[i].y, large.points[i].y) << i;
+  }
+  // Realization 1: another shift of the same sequence.
+  const AlignedSet r1 = MustGet(*client_, 256, 30.0, "lattice-sequence", 1);
+  EXPECT_EQ(r1.points, LatticeSequencePoints(256, choice->generator, 1));
+
+  alignset::SetRequest bad;
+  bad.n = 8;
+  bad.directions_deg = {30.0};
+  bad.construction = "lattice-sequence";
+  auto refused = client_->GetAlignedSet(bad);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.status().code(), Status::Code::kInvalidArgument);
+  EXPECT_EQ(MustGet(*client_, 64, 60.0, "lattice-sequence").points.size(), 64u);  // still serving
 }
 
 }  // namespace

@@ -196,6 +196,23 @@ class ServerTest(unittest.TestCase):
         self.assertGreater(np.std(q), 0)
         self.assertLess(abs(q.mean() - (np.e - 1) / 3), 4 * np.std(q) / np.sqrt(len(q)))
 
+    def test_lattice_sequence_construction(self):
+        s = self.client.get_set(128, 30, construction="lattice-sequence")
+        self.assertEqual(s.metadata.construction, "lattice-sequence")
+        self.assertEqual(s.metadata.key.profile, "lattice-sequence-v1-w1")
+        longer = self.client.get(512, 30, construction="lattice-sequence")
+        # The set for 128 is the first 128 points of the set for 512.
+        np.testing.assert_array_equal(longer[:128], s.points)
+        # Every power-of-two prefix is a shifted lattice: one point in each
+        # of the 2^m columns, each at the same offset from its column's edge.
+        for m in range(4, 10):
+            x = longer[: 2 ** m, 0] * 2 ** m
+            self.assertEqual(len(set(np.floor(x).astype(int))), 2 ** m)
+            np.testing.assert_allclose(x - np.floor(x), (x - np.floor(x))[0], atol=1e-9)
+        with self.assertRaises(alignset.AlignSetError) as e:
+            self.client.get(8, 30, construction="lattice-sequence")
+        self.assertEqual(e.exception.code, grpc.StatusCode.INVALID_ARGUMENT)
+
     def test_served_lattice_generator_and_own_shifts(self):
         # A plain lattice (120 degrees: swapped and mirrored) is its
         # generator's lattice under a shift: the one through its first point.

@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/optimize/lattice_sequence.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/util/directions.h"
 #include "core/util/hash.h"
@@ -193,6 +194,48 @@ TEST_F(AlignedSamplerTest, ThePlanFollowsTheEdgeAndTheMainPointsAreItsLattice) {
   EXPECT_EQ(smooth.plan.main, PixelPlan::Main::kOwenSobol);
   EXPECT_EQ(scratch.stats().pixels, 6u);
   EXPECT_EQ(scratch.stats().with_direction, 5u);
+}
+
+// A table of lattice sequences: the sampler says it is progressive, the
+// first k main points of a planned pixel are the first k of its N (the
+// sequence's prefix under the pixel's shift, each power-of-two prefix a
+// lattice), and an estimate from k main values weighs the pre-pass as
+// beside k. A fixed-size lattice's sampler is not progressive.
+TEST_F(AlignedSamplerTest, ALatticeSequenceTableIsProgressive) {
+  TableSection seq{1024, "lattice-sequence", TableSpace::kOneDirection, {}, {}};
+  for (uint32_t k = 0; k < TableSpaceKeys(TableSpace::kOneDirection); ++k) {
+    seq.sets.push_back(LatticeSequencePoints(1024, 2 * k + 4001, 0));
+  }
+  auto made = SetTable::FromSections({std::move(seq)});
+  ASSERT_TRUE(made.ok()) << made.status().message();
+  // Through the file's bytes: the sequence's points survive bit for bit.
+  auto t = SetTable::Parse((*made)->Serialize());
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  EXPECT_EQ((*t)->sections().front().sets, (*made)->sections().front().sets);
+  EXPECT_EQ((*t)->PointCounts("lattice-sequence"), std::vector<uint32_t>{1024});
+  AlignedSamplerOptions o = Options(1024, 12);
+  o.construction = "lattice-sequence";
+  auto s = AlignedSampler::Create(*t, o);
+  ASSERT_TRUE(s.ok()) << s.status().message();
+  EXPECT_TRUE(s->progressive());
+  EXPECT_FALSE(Make(Options(256, 12)).progressive());
+  AlignedSampler::Scratch scratch;
+  const Edge e{41.0, 6.4, 6.3};
+  const ImageFn f = [&](uint32_t x, uint32_t y, double u, double v) { return e.At(x, y, u, v); };
+  const Rendered r = RenderPixel(*s, scratch, 6, 6, 12, 12, f);
+  ASSERT_EQ(r.plan.main, PixelPlan::Main::kSet);
+  std::vector<Point2> all(1024), part(100);
+  s->MainPoints(r.plan, all);
+  s->MainPoints(r.plan, part);
+  for (size_t i = 0; i < part.size(); ++i) EXPECT_EQ(part[i], all[i]);
+  // The first 64 are a shifted lattice: one point in each column of 1/64.
+  std::vector<int> columns(64, 0);
+  for (size_t i = 0; i < 64; ++i) ++columns[static_cast<size_t>(all[i].x * 64)];
+  for (int c : columns) EXPECT_EQ(c, 1);
+  const std::vector<double> pre(s->prepass_samples(), 1.0), main(64, 0.0);
+  const double w = PrepassWeight(s->prepass_samples(), 64);
+  EXPECT_NEAR(s->Estimate(r.plan, pre, main), w, 1e-15);
+  EXPECT_GT(w, s->PrepassWeight());
 }
 
 TEST_F(AlignedSamplerTest, ASharedDomainsStackedBlockFindsTheEdge) {

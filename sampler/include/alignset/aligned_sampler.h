@@ -157,11 +157,21 @@ class AlignedSampler {
   // INVALID_ARGUMENT for a block of the wrong shape.
   StatusOr<PixelPlan> Plan(uint32_t x, uint32_t y, std::span<const std::span<const double>> block,
                            Scratch& scratch) const;
-  // The plan's main points (out.size() == n()).
+  // The plan's main points (out.size() == n()); with out.size() < n(), the
+  // first out.size() of them.
   void MainPoints(const PixelPlan& plan, std::span<Point2> out) const;
-  // The pixel's estimate from its pre-pass values (M) and main values (N).
+  // The pixel's estimate from its pre-pass values (M) and main values (N),
+  // or the first k < N main values: the pre-pass then weighs as beside k
+  // (PrepassWeight(M, k)).
   double Estimate(const PixelPlan& plan, std::span<const double> prepass_values,
                   std::span<const double> main_values) const;
+  // Whether every prefix of the main points is a good set of its own (the
+  // construction is progressive, "lattice-sequence"; the Owen-Sobol fallback
+  // always is): a renderer may stop a pixel after any k main points, reading
+  // the first k of MainPoints, and still get the construction's gain at k
+  // (adaptive sampling, a progressive preview). A fixed-size set's prefix is
+  // unbiased too, but only a part of a set made for N.
+  bool progressive() const { return progressive_; }
   // The pre-pass's weight in a kUnbiased estimate.
   double PrepassWeight() const { return weight_; }
 
@@ -170,6 +180,7 @@ class AlignedSampler {
   AlignedSamplerOptions options_;
   PrepassFit fit_;
   double weight_ = 0.0;
+  bool progressive_ = false;
 };
 
 }  // namespace alignset

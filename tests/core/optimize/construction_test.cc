@@ -26,7 +26,8 @@ TEST(ConstructionTable, NamesProfilesAndVersionsAreTheStoredOnes) {
   const Row rows[] = {{ConstructionKind::kOptimized, "optimized", "", 0, 0.0},
                       {ConstructionKind::kLattice, "lattice", "lattice-v2-w1", 2, 1.0},
                       {ConstructionKind::kTentLattice, "tent-lattice", "tent-lattice-v1-w2", 1, 2.0},
-                      {ConstructionKind::kNet, "net", "net-v1-w1", 1, 1.0}};
+                      {ConstructionKind::kNet, "net", "net-v1-w1", 1, 1.0},
+                      {ConstructionKind::kLatticeSequence, "lattice-sequence", "lattice-sequence-v1-w1", 1, 1.0}};
   ASSERT_EQ(Constructions().size(), std::size(rows));
   for (const Row& r : rows) {
     const Construction& c = ConstructionOf(r.kind);
@@ -61,7 +62,7 @@ TEST(ConstructionTable, UnknownNamesAndProfilesAreNotConstructions) {
     EXPECT_TRUE(profiles.insert(c.profile).second) << c.profile;
   }
   EXPECT_EQ(KnownConstructionNames(),
-            "'optimized' (the default, also ''), 'lattice', 'tent-lattice' and 'net'");
+            "'optimized' (the default, also ''), 'lattice', 'tent-lattice', 'net' and 'lattice-sequence'");
 }
 
 TEST(ConstructionTable, KindsAnswerWhatTheirCallersAsk) {
@@ -72,6 +73,9 @@ TEST(ConstructionTable, KindsAnswerWhatTheirCallersAsk) {
   EXPECT_TRUE(ConstructionOf(ConstructionKind::kTentLattice).folded());
   EXPECT_FALSE(ConstructionOf(ConstructionKind::kNet).lattice());
   EXPECT_FALSE(ConstructionOf(ConstructionKind::kNet).optimized());
+  EXPECT_FALSE(ConstructionOf(ConstructionKind::kLatticeSequence).lattice());
+  EXPECT_TRUE(ConstructionOf(ConstructionKind::kLatticeSequence).progressive());
+  EXPECT_FALSE(ConstructionOf(ConstructionKind::kLattice).progressive());
 }
 
 TEST(ConstructionTable, ANetNeedsAPowerOfTwoTheOthersAnyN) {
