@@ -50,6 +50,20 @@ int RunStats(const StatsOptions& o) {
               m.optimize_seconds_max);
   std::printf("queue             %u waiting, %u running, %llu rejected (full)\n", m.queue_length,
               m.running, (unsigned long long)m.rejected_queue_full);
+  // A replica says what it could not serve and what its writer filled; a
+  // bounded writer what it evicted (both lines always, so a script can parse
+  // them: "no" / "unbounded" when the server is neither).
+  std::printf("replica           %s, misses %llu (NOT_FOUND), filled %llu from the writer\n",
+              m.read_only ? "yes (read-only)" : "no", (unsigned long long)m.replica_misses,
+              (unsigned long long)m.sets_filled);
+  if (m.max_cache_bytes > 0) {
+    std::printf("bounded file      %.1f of %.1f MiB, evictions %llu (%.1f MiB), vacuums %llu\n",
+                m.cache_file_bytes / 1048576.0, m.max_cache_bytes / 1048576.0,
+                (unsigned long long)m.cache_evictions, m.cache_evicted_bytes / 1048576.0,
+                (unsigned long long)m.cache_vacuums);
+  } else {
+    std::printf("bounded file      unbounded, evictions %llu\n", (unsigned long long)m.cache_evictions);
+  }
   if (o.list) {
     auto keys = (*client)->ListCachedSets(static_cast<uint32_t>(o.n), "", static_cast<uint32_t>(o.limit));
     if (!keys.ok()) return Failure(keys.status());

@@ -132,6 +132,14 @@ ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
   m.optimize_seconds_total = r.optimize_seconds_total();
   m.optimize_seconds_max = r.optimize_seconds_max();
   m.uptime_seconds = r.uptime_seconds();
+  m.read_only = r.read_only();
+  m.replica_misses = r.replica_misses();
+  m.sets_filled = r.sets_filled();
+  m.max_cache_bytes = r.max_cache_bytes();
+  m.cache_file_bytes = r.cache_file_bytes();
+  m.cache_evictions = r.cache_evictions();
+  m.cache_evicted_bytes = r.cache_evicted_bytes();
+  m.cache_vacuums = r.cache_vacuums();
   return m;
 }
 

@@ -109,6 +109,17 @@ TEST(Replica, RefusesEveryWritePathAndNeverModifiesItsFile) {
       EXPECT_EQ(resp2.items(0).code(), 0);
       EXPECT_EQ(resp2.items(1).code(), static_cast<int>(grpc::StatusCode::NOT_FOUND));
     }
+    {  // `alignset stats` prints the replica's counters as its metrics count them
+      const v1::MetricsResponse m = GetMetrics(replica.address());
+      EXPECT_TRUE(m.read_only());
+      EXPECT_GE(m.replica_misses(), 4u);
+      const CommandResult stats = RunCommand(std::string(ALIGNSET_CLI_PATH) + " stats --server " + replica.address());
+      EXPECT_EQ(stats.exit_code, 0) << stats.output;
+      EXPECT_NE(stats.output.find("replica           yes (read-only), misses " + std::to_string(m.replica_misses()) +
+                                  " (NOT_FOUND), filled 0 from the writer"),
+                std::string::npos)
+          << stats.output;
+    }
     {  // Precompute: refused as a whole
       grpc::ClientContext ctx;
       v1::PrecomputeRequest req;
@@ -244,6 +255,12 @@ TEST(BoundedCache, EvictionKeepsTheFileUnderTheBoundAndTheMostRecentlyServedSets
   EXPECT_GT(m.cache_evicted_bytes(), 0u);
   const auto prom = ParsePrometheus(HttpRequest(server.metrics_port(), "GET", "/metrics").body);
   EXPECT_EQ(prom.at("alignset_cache_evictions_total"), static_cast<double>(m.cache_evictions()));
+  // `alignset stats` prints the same evictions and the bound.
+  const CommandResult stats = RunCommand(std::string(ALIGNSET_CLI_PATH) + " stats --server " + server.address());
+  EXPECT_EQ(stats.exit_code, 0) << stats.output;
+  EXPECT_NE(stats.output.find(", evictions " + std::to_string(m.cache_evictions()) + " ("), std::string::npos)
+      << stats.output;
+  EXPECT_NE(stats.output.find("replica           no, misses 0"), std::string::npos) << stats.output;
   // The hot set was never evicted; the first of the realizations was.
   ASSERT_TRUE(Get(stub.get(), 1024, {0}, &resp).ok());
   EXPECT_TRUE(resp.metadata().from_cache());

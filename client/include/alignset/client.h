@@ -193,6 +193,15 @@ struct ServiceMetrics {
            optimizations_failed = 0, shared_waits = 0, rejected_queue_full = 0;
   uint32_t queue_length = 0, running = 0;
   double optimize_seconds_total = 0.0, optimize_seconds_max = 0.0, uptime_seconds = 0.0;
+  // A read-only replica (--read-only): misses it answered NOT_FOUND (no
+  // --fill-from) and sets its writer filled (--fill-from, kept in memory).
+  bool read_only = false;
+  uint64_t replica_misses = 0, sets_filled = 0;
+  // A bounded file (--max-cache-bytes; 0: unbounded): sets evicted (least
+  // recently served first), their estimated bytes, the file's size at the
+  // last look, background vacuum passes.
+  int64_t max_cache_bytes = 0, cache_file_bytes = 0;
+  uint64_t cache_evictions = 0, cache_evicted_bytes = 0, cache_vacuums = 0;
 };
 
 struct CacheInfo {
