@@ -3,6 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
 #include <vector>
 
 #include "server/set_lru.h"
@@ -19,6 +23,57 @@ CacheEvictor::~CacheEvictor() {
   }
   vacuum_cv_.notify_all();
   if (vacuum_thread_.joinable()) vacuum_thread_.join();
+  if (Status s = SaveOrder(); !s.ok()) spdlog::warn("eviction order not saved: {}", s.message());
+}
+
+namespace {
+
+// The names of a saved order, oldest first; empty when there is none.
+std::vector<std::string> ReadOrder(const std::string& path) {
+  std::vector<std::string> names;
+  if (path.empty()) return names;
+  std::ifstream in(path);
+  if (!in) {
+    if (std::filesystem::exists(path)) spdlog::warn("cannot read the eviction order {}: sets go by creation time", path);
+    return names;
+  }
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) names.push_back(line);
+  }
+  return names;
+}
+
+}  // namespace
+
+Status CacheEvictor::SaveOrder() {
+  if (options_.order_file.empty()) return Status::Ok();
+  std::lock_guard<std::mutex> saving(save_mu_);
+  std::string text;
+  {
+    std::lock_guard<std::mutex> lock(mu_);
+    if (!order_changed_) return Status::Ok();
+    order_changed_ = false;
+    for (const auto& [tick, name] : order_) text += name + "\n";
+  }
+  const std::string tmp = options_.order_file + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::lock_guard<std::mutex> lock(mu_);
+      order_changed_ = true;
+      return Status::Unavailable("cannot write " + tmp);
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, options_.order_file, ec);
+  if (ec) {
+    std::lock_guard<std::mutex> lock(mu_);
+    order_changed_ = true;
+    return Status::Unavailable("cannot rename " + tmp + ": " + ec.message());
+  }
+  return Status::Ok();
 }
 
 Status CacheEvictor::Start() {
@@ -31,12 +86,33 @@ Status CacheEvictor::Start() {
   page_size_ = std::max<int64_t>(512, space->page_size);
   auto sets = cache_->ListSummaries();
   if (!sets.ok()) return sets.status();
-  std::stable_sort(sets->begin(), sets->end(), [](const storage::SetSummary& a, const storage::SetSummary& b) {
-    return a.created_unix < b.created_unix;
+  // The saved order's places; a set it does not name goes before all of
+  // them, by creation time.
+  std::map<std::string, size_t> saved;
+  {
+    const std::vector<std::string> names = ReadOrder(options_.order_file);
+    for (size_t i = 0; i < names.size(); ++i) saved[names[i]] = i + 1;
+  }
+  std::vector<std::pair<size_t, const storage::SetSummary*>> ranked;
+  for (const auto& s : *sets) {
+    auto it = saved.find(KeyString(s.key));
+    ranked.emplace_back(it == saved.end() ? 0 : it->second, &s);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    return a.second->created_unix < b.second->created_unix;
   });
+  size_t restored = 0;
   {
     std::lock_guard<std::mutex> lock(mu_);
-    for (const auto& s : *sets) TouchLocked(KeyString(s.key), s.key);
+    for (const auto& [place, s] : ranked) {
+      TouchLocked(KeyString(s->key), s->key);
+      restored += place != 0;
+    }
+    order_changed_ = false;
+  }
+  if (!options_.order_file.empty()) {
+    spdlog::info("eviction order: {} of {} sets from {}", restored, sets->size(), options_.order_file);
   }
   metrics_->cache_file_bytes.store(space->file_bytes());
   spdlog::info("--max-cache-bytes {}: {} sets, {} bytes in use of a {}-byte file", options_.max_bytes,
@@ -59,6 +135,7 @@ void CacheEvictor::TouchLocked(const std::string& name, const storage::SetKey& k
   if (!is_new) order_.erase({it->second.first, name});
   it->second.first = ++tick_;
   order_.emplace(it->second.first, name);
+  order_changed_ = true;
 }
 
 void CacheEvictor::Touch(const std::string& name, const storage::SetKey& key) {
@@ -115,6 +192,7 @@ Status CacheEvictor::MakeRoom(const storage::SetKey& key, int64_t bytes) {
       if (auto it = last_served_.find(victim); it != last_served_.end()) {
         order_.erase({it->second.first, victim});
         last_served_.erase(it);
+        order_changed_ = true;
       }
     }
     if (del.ok()) {
@@ -140,8 +218,15 @@ void CacheEvictor::VacuumLoop() {
   for (;;) {
     {
       std::unique_lock<std::mutex> lock(vacuum_mu_);
-      vacuum_cv_.wait(lock, [&] { return stopping_ || vacuum_due_; });
+      // Wakes to save a changed order too.
+      const bool due = vacuum_cv_.wait_for(lock, std::chrono::duration<double>(options_.save_seconds),
+                                           [&] { return stopping_ || vacuum_due_; });
       if (stopping_) return;
+      if (!due) {
+        lock.unlock();
+        if (Status s = SaveOrder(); !s.ok()) spdlog::warn("eviction order not saved: {}", s.message());
+        continue;
+      }
       vacuum_due_ = false;
     }
     // A few hundred pages per transaction: the cache's connection is held

@@ -18,9 +18,14 @@ namespace alignset::server {
 //
 // Order: least recently served first. Every hit and every stored set is a
 // Touch; the order lives in memory (a write per hit would cost more than the
-// hit) and starts, at each server start, from the sets' creation times, so
-// after a restart the sets not yet served again go in the order they were
-// made.
+// hit) and is saved, whole, beside the cache file (Options::order_file: the
+// names oldest first, written to a temporary file and renamed, so a crash
+// leaves the previous order) every few seconds while it changes and when the
+// evictor stops. At start the saved order is read back: the sets it names
+// keep their places, the sets it does not name (stored by a build or a
+// process that did not save them) go first, in the order they were made. A
+// missing or unreadable order file is a warning, and the start falls back to
+// creation times.
 //
 // Before a set is written, MakeRoom deletes sets (one transaction each)
 // until the pages in use plus the new set fit the bound. A pinned set, one
@@ -39,6 +44,10 @@ class CacheEvictor {
     std::function<bool(const std::string&)> pinned;
     // Called for each evicted set (the scheduler drops it from memory too).
     std::function<void(const std::string&)> evicted;
+    // Where the order is kept between starts (empty: not kept).
+    std::string order_file;
+    // How often a changed order is saved.
+    double save_seconds = 5.0;
   };
   CacheEvictor(storage::SetCache* cache, Metrics* metrics, Options options);
   ~CacheEvictor();  // stops the vacuum thread
@@ -49,6 +58,9 @@ class CacheEvictor {
 
   // The set was served (or stored) now.
   void Touch(const std::string& name, const storage::SetKey& key);
+  // Writes the order to Options::order_file now (also done every
+  // save_seconds while it changes, and on destruction).
+  Status SaveOrder();
   // Makes room for `bytes` more (a set about to be written for `key`, which
   // is pinned meanwhile). ResourceExhausted when pinned sets alone fill the
   // bound or the set is larger than the bound.
@@ -70,6 +82,8 @@ class CacheEvictor {
   uint64_t tick_ = 0;
   std::map<std::string, std::pair<uint64_t, storage::SetKey>> last_served_;
   std::set<std::pair<uint64_t, std::string>> order_;  // oldest first
+  bool order_changed_ = false;
+  std::mutex save_mu_;  // one SaveOrder at a time
   std::mutex make_room_mu_;
 
   std::mutex vacuum_mu_;

@@ -151,6 +151,7 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   po.read_only = o.read_only;
   po.fill = o.fill;
   po.max_cache_bytes = o.max_cache_bytes;
+  po.eviction_order_file = o.eviction_order_file;
   // A key is pinned while its job is in flight, its write included.
   po.pinned = [p = s.get()](const std::string& name) { return p->InFlight(name); };
   auto producer = SetProducer::Create(po, cache, metrics);

@@ -155,6 +155,9 @@ class Scheduler {
     std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)> fill;
     // > 0: the cache file's bound (CacheEvictor); writers only.
     int64_t max_cache_bytes = 0;
+    // With max_cache_bytes: where the eviction order is kept between starts
+    // (the cache file's path + ".served"; empty: not kept).
+    std::string eviction_order_file;
     // Makes each worker's engine; unset: MakeSpectralEngine(engine,
     // threads_per_worker). Tests put an engine here that they can hold.
     std::function<StatusOr<std::unique_ptr<SpectralEngine>>()> engine_factory;

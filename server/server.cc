@@ -158,6 +158,8 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   so.read_only = config.read_only;
   if (!config.fill_from.empty()) so.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds);
   so.max_cache_bytes = config.max_cache_bytes;
+  // Beside the file it orders (a replica never evicts).
+  if (config.max_cache_bytes > 0 && !config.read_only) so.eviction_order_file = impl->db_path + ".served";
   auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
   if (!scheduler.ok()) return scheduler.status();
   impl->scheduler = std::move(scheduler).value();

@@ -29,6 +29,7 @@ StatusOr<std::unique_ptr<SetProducer>> SetProducer::Create(const Options& option
     CacheEvictor::Options eo;
     eo.max_bytes = options.max_cache_bytes;
     eo.pinned = options.pinned;
+    eo.order_file = options.eviction_order_file;
     eo.evicted = [lru = &p->lru_](const std::string& name) { lru->Erase(name); };
     p->evictor_ = std::make_unique<CacheEvictor>(cache, metrics, std::move(eo));
     if (Status st = p->evictor_->Start(); !st.ok()) return st;

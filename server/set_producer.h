@@ -47,6 +47,7 @@ class SetProducer {
     bool read_only = false;
     std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)> fill;
     int64_t max_cache_bytes = 0;
+    std::string eviction_order_file;  // Scheduler::Options::eviction_order_file
     // With max_cache_bytes: a set that must not be evicted (its key is
     // being produced).
     std::function<bool(const std::string&)> pinned;

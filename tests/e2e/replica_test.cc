@@ -273,6 +273,40 @@ TEST(BoundedCache, EvictionKeepsTheFileUnderTheBoundAndTheMostRecentlyServedSets
   EXPECT_EQ(verify.exit_code, 0) << verify.output;
 }
 
+// The least-recently-served order is kept beside the file: a set served
+// again just before a restart outlives, after it, the sets made after it
+// and not served since (by creation time alone it would go first).
+TEST(BoundedCache, TheEvictionOrderSurvivesARestart) {
+  TempDir dir;
+  const int64_t bound = 256 * 1024;  // about 11 sets of N = 1024
+  const std::vector<std::string> flags = With(kFast, {"--max-cache-bytes", std::to_string(bound)});
+  v1::AlignedSetResponse resp;
+  std::string first;
+  {
+    ServerProcess server(dir.path(), flags);
+    ASSERT_EQ(server.error(), "");
+    auto stub = OwnStub(server.address());
+    for (uint32_t r = 1; r <= 8; ++r) ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, r).ok()) << r;
+    ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, 1).ok());  // realization 1: now the most recent
+    EXPECT_TRUE(resp.metadata().from_cache());
+    first = resp.points();
+    ASSERT_EQ(server.Stop(SIGTERM), 0);
+    ASSERT_TRUE(fs::exists(server.db_path() + ".served"));
+  }
+  ServerProcess again(dir.path(), flags);
+  ASSERT_EQ(again.error(), "");
+  auto stub = OwnStub(again.address());
+  // Eight more sets: the file holds about 11, so about five of the first
+  // eight go, realization 2 (the least recently served) first, 1 last.
+  for (uint32_t r = 9; r <= 16; ++r) ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, r).ok()) << r;
+  EXPECT_GE(GetMetrics(again.address()).cache_evictions(), 3u);
+  ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, 2).ok());
+  EXPECT_FALSE(resp.metadata().from_cache()) << "realization 2 should have been evicted first";
+  ASSERT_TRUE(Get(stub.get(), 1024, {10}, &resp, 1).ok());
+  EXPECT_TRUE(resp.metadata().from_cache()) << "realization 1 was served last before the restart";
+  EXPECT_EQ(resp.points(), first);
+}
+
 TEST(MetricsAuth, TheEndpointRefusesARequestWithoutTheTokenWhenOneIsSet) {
   TempDir dir;
   const std::string token_file = dir.path() + "/token";
