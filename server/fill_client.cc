@@ -1,5 +1,8 @@
 #include "server/fill_client.h"
 
+#include <condition_variable>
+#include <mutex>
+
 #include <grpcpp/grpcpp.h>
 
 #include <cstring>
@@ -32,7 +35,8 @@ Status FromGrpc(const grpc::Status& s, const std::string& what) {
 FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds) {
   auto stub = std::shared_ptr<v1::AlignSet::Stub>(
       v1::AlignSet::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())));
-  return [stub, address, token, timeout_seconds](const storage::SetKey& key) -> StatusOr<storage::SetRecord> {
+  return [stub, address, token, timeout_seconds](const storage::SetKey& key,
+                                                 const FillCancelled& cancelled) -> StatusOr<storage::SetRecord> {
     const std::string name = KeyString(key);
     v1::AlignedSetRequest req;
     req.set_n(key.n);
@@ -51,7 +55,30 @@ FillFunction MakeWriterFill(const std::string& address, const std::string& token
                      std::chrono::milliseconds(static_cast<int64_t>(timeout_seconds * 1000)));
     if (!token.empty()) ctx.AddMetadata("authorization", "Bearer " + token);
     v1::AlignedSetResponse resp;
-    const grpc::Status s = stub->GetAlignedSet(&ctx, req, &resp);
+    // Asynchronous, so that the caller's leaving can cancel the call.
+    std::mutex mu;
+    std::condition_variable cv;
+    bool done = false;
+    grpc::Status s;
+    stub->async()->GetAlignedSet(&ctx, &req, &resp, [&](grpc::Status status) {
+      std::lock_guard<std::mutex> lock(mu);
+      s = std::move(status);
+      done = true;
+      cv.notify_all();
+    });
+    bool asked_to_cancel = false;
+    {
+      std::unique_lock<std::mutex> lock(mu);
+      while (!cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) {
+        if (!asked_to_cancel && cancelled && cancelled()) {
+          asked_to_cancel = true;
+          ctx.TryCancel();  // the callback still runs, with CANCELLED
+        }
+      }
+    }
+    if (asked_to_cancel && !s.ok()) {
+      return Status::Cancelled("the fill of " + name + " from " + address + " was cancelled: every caller left");
+    }
     if (!s.ok()) return FromGrpc(s, "the writer " + address + " for " + name);
     const v1::SetMetadata& md = resp.metadata();
     const v1::CanonicalKey& k = md.key();

@@ -15,8 +15,11 @@ namespace alignset::server {
 // other optimization settings has another profile: FAILED_PRECONDITION), no
 // swap or inversion, and N points. `token` (may be empty) is sent as the
 // bearer token; `timeout_seconds` bounds one call (the writer may have to
-// optimize the set first).
-using FillFunction = std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)>;
+// optimize the set first). `cancelled` is asked every 50 ms while the call
+// is in flight: true cancels it (the writer sees its caller leave and drops
+// the job when no one else waits) and the fill returns CANCELLED.
+using FillCancelled = std::function<bool()>;
+using FillFunction = std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const FillCancelled&)>;
 FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds);
 
 }  // namespace alignset::server

@@ -473,7 +473,16 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     return SliceEnd::kDone;
   }
   if (options_.fill) {
-    auto filled = producer_->Fill(job->name, job->key);
+    // The call to the writer is cancelled when every waiter has left (or
+    // the server stops), as an optimization notices at its next slice.
+    auto filled = producer_->Fill(job->name, job->key, [this, job] {
+      std::lock_guard<std::mutex> lock(mu_);
+      return job->waiters == 0 || stopping_;
+    });
+    if (!filled.ok() && filled.status().code() == Status::Code::kCancelled) {
+      metrics_->optimizations_cancelled.fetch_add(1, std::memory_order_relaxed);
+      spdlog::info("fill cancelled {}: {}", job->name, filled.status().message());
+    }
     return Finish(job, filled.status(), filled.ok() ? std::move(filled).value() : nullptr);
   }
   if (!ConstructionOfProfile(job->key.profile).optimized()) {

@@ -152,7 +152,9 @@ class Scheduler {
     // writer, --fill-from) instead of optimizing, and keeps the answer in
     // memory only.
     bool read_only = false;
-    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)> fill;
+    // `fill(key, cancelled)`: cancelled() turns true when every caller of
+    // the key has left (server/fill_client.h).
+    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const std::function<bool()>&)> fill;
     // > 0: the cache file's bound (CacheEvictor); writers only.
     int64_t max_cache_bytes = 0;
     // With max_cache_bytes: where the eviction order is kept between starts

@@ -128,9 +128,10 @@ StatusOr<std::shared_ptr<const CanonicalEntry>> SetProducer::Construct(const std
 }
 
 StatusOr<std::shared_ptr<const CanonicalEntry>> SetProducer::Fill(const std::string& name,
-                                                                  const storage::SetKey& key) {
+                                                                  const storage::SetKey& key,
+                                                                  const std::function<bool()>& cancelled) {
   const auto t0 = Clock::now();
-  auto record = options_.fill(key);
+  auto record = options_.fill(key, cancelled);
   if (!record.ok()) {
     spdlog::warn("fill {} from the writer: {}", name, record.status().message());
     return record.status();

@@ -45,7 +45,7 @@ class SetProducer {
     size_t lattice_terms_bytes = size_t{128} << 20;
     std::function<void(const Status&)> on_write_error;
     bool read_only = false;
-    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&)> fill;
+    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const std::function<bool()>&)> fill;
     int64_t max_cache_bytes = 0;
     std::string eviction_order_file;  // Scheduler::Options::eviction_order_file
     // With max_cache_bytes: a set that must not be evicted (its key is
@@ -78,8 +78,10 @@ class SetProducer {
   // A constructed key's set, built and stored; `seconds` gets the time.
   StatusOr<std::shared_ptr<const CanonicalEntry>> Construct(const std::string& name, const storage::SetKey& key,
                                                             double* seconds);
-  // A replica's set from its writer, kept in memory only.
-  StatusOr<std::shared_ptr<const CanonicalEntry>> Fill(const std::string& name, const storage::SetKey& key);
+  // A replica's set from its writer, kept in memory only; CANCELLED when
+  // `cancelled` turned true while the writer was asked.
+  StatusOr<std::shared_ptr<const CanonicalEntry>> Fill(const std::string& name, const storage::SetKey& key,
+                                                       const std::function<bool()>& cancelled);
 
   // The parent in the key lineage (core/align/key_lineage.h) an optimized
   // key warm-starts from; nullopt for a root, a constructed key, N below

@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <chrono>
 #include <sstream>
+#include <thread>
 
 #include "alignset/v1/alignset.grpc.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -211,6 +213,47 @@ TEST(Replica, FillFromAWriterKeepsTheSetInMemoryOnly) {
   EXPECT_EQ(m.optimizations_started(), 0u);
   EXPECT_EQ(replica.Stop(SIGTERM), 0);
   EXPECT_TRUE(ReadText(file) == before);
+}
+
+// A replica's fill is cancelled with the call that asked for it: the
+// caller's deadline passes while the writer is still optimizing; the
+// replica cancels its call to the writer, and the writer, with no one else
+// waiting, drops the optimization (before: both went on to the writer's
+// end, and the replica's fill timeout).
+TEST(Replica, AnInFlightFillIsCancelledWithItsCaller) {
+  TempDir shipped, writer_dir, replica_dir;
+  MakeShippedCache(shipped.path());
+  // Slow enough to be in flight when the caller gives up (seconds at N = 4096).
+  ServerProcess writer(writer_dir.path(), {"--max-iterations", "20000", "--workers", "1", "--threads-per-worker", "1",
+                                           "--max-n", "4096"});
+  ASSERT_EQ(writer.error(), "");
+  ServerProcess replica(replica_dir.path(), With(kFast, {"--read-only", "--db", shipped.path() + "/cache.sqlite",
+                                                         "--fill-from", writer.address()}));
+  ASSERT_EQ(replica.error(), "");
+  auto rs = OwnStub(replica.address());
+  {
+    grpc::ClientContext ctx;
+    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(700));
+    v1::AlignedSetResponse resp;
+    const grpc::Status s = rs->GetAlignedSet(&ctx, SetRequest(4096, {33}), &resp);
+    ASSERT_EQ(s.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED) << s.error_message();
+  }
+  // The writer's optimization is withdrawn within seconds, not run out.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  uint64_t writer_cancelled = 0, replica_cancelled = 0;
+  while (std::chrono::steady_clock::now() < until) {
+    writer_cancelled = GetMetrics(writer.address()).optimizations_cancelled();
+    replica_cancelled = GetMetrics(replica.address()).optimizations_cancelled();
+    if (writer_cancelled >= 1 && replica_cancelled >= 1) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_GE(replica_cancelled, 1u) << "the replica never cancelled its fill";
+  EXPECT_GE(writer_cancelled, 1u) << "the writer never saw its caller leave";
+  EXPECT_EQ(GetMetrics(writer.address()).optimizations_completed(), 0u);
+  EXPECT_EQ(GetMetrics(replica.address()).sets_filled(), 0u);
+  // The replica serves on.
+  v1::AlignedSetResponse resp;
+  ASSERT_TRUE(Get(rs.get(), 64, {30}, &resp).ok());
 }
 
 TEST(Replica, ConfigurationMistakesAreUsageErrors) {

@@ -24,7 +24,7 @@ TEST(Construction, NamesParseAndUnknownOnesListTheKnown) {
     EXPECT_EQ(c.status().code(), Status::Code::kInvalidArgument);
     EXPECT_EQ(c.status().message(), "unknown construction '" + std::string(bad) +
                                         "': the known ones are 'optimized' (the default, also ''), "
-                                        "'lattice', 'tent-lattice' and 'net'");
+                                        "'lattice', 'tent-lattice', 'net' and 'lattice-sequence'");
   }
   // A client's name is escaped and cut, never echoed raw.
   auto forged = ParseConstruction("x\nforged" + std::string(1000, 'a'));

@@ -115,21 +115,21 @@ TEST_F(SetProducerTest, AReplicaKeepsWhatItsWriterSendsInMemoryOnly) {
   SetProducer::Options o;
   o.read_only = true;
   int asked = 0;
-  o.fill = [&](const storage::SetKey& key) -> StatusOr<storage::SetRecord> {
+  o.fill = [&](const storage::SetKey& key, const std::function<bool()>&) -> StatusOr<storage::SetRecord> {
     ++asked;
     if (key.n == 128) return Status::NotFound("the writer has none");
     return Record(key);
   };
   Start(o);
   const storage::SetKey key = producer_->KeyFor(64, {1, 20, 20}, 0, ConstructionKind::kOptimized);
-  auto filled = producer_->Fill(KeyString(key), key);
+  auto filled = producer_->Fill(KeyString(key), key, [] { return false; });
   ASSERT_TRUE(filled.ok());
   EXPECT_FALSE((*filled)->stored());
   EXPECT_FALSE(cache_->Contains(key).value());
   EXPECT_NE(producer_->FromMemory(KeyString(key), key, false), nullptr);
   EXPECT_EQ(metrics_.sets_filled.load(), 1u);
   const storage::SetKey missing = producer_->KeyFor(128, {1, 20, 20}, 0, ConstructionKind::kOptimized);
-  EXPECT_EQ(producer_->Fill(KeyString(missing), missing).status().code(), Status::Code::kNotFound);
+  EXPECT_EQ(producer_->Fill(KeyString(missing), missing, [] { return false; }).status().code(), Status::Code::kNotFound);
   EXPECT_EQ(asked, 2);
   // A read-only producer never writes, even a set it completed.
   auto done = producer_->Complete(KeyString(missing), Record(missing));
