@@ -115,6 +115,11 @@ const std::vector<Flag>& Flags() {
       {"fill-from", "ADDR  with --read-only: ask the writer at ADDR (HOST:PORT) for a missing set;\n"
                     "                     its answer is kept in memory only",
        StringFlag(&ServerConfig::fill_from)},
+      {"fill-tls-ca", "PEM with --fill-from: TLS to the writer, trusting this root certificate",
+       StringFlag(&ServerConfig::fill_tls_ca)},
+      {"fill-tls-name", "NAME with --fill-tls-ca: the name the writer's certificate must carry\n"
+                        "                     (default: the host of --fill-from)",
+       StringFlag(&ServerConfig::fill_tls_name)},
       {"max-cache-bytes", "B  bound the cache file: evict the least recently served sets (default 0: none)",
        IntFlag(&ServerConfig::max_cache_bytes, "max-cache-bytes", 0, INT64_MAX)},
       {"memory-cache-mb", "M  in-memory cache of decoded sets (default 512)",
@@ -229,6 +234,12 @@ StatusOr<ServerConfig> ParseServerConfig(int argc, char** argv, const EnvLookup&
     if (!config.read_only) return Status::InvalidArgument("--fill-from needs --read-only");
     auto f = ParseListenAddress(config.fill_from, "--fill-from");
     if (!f.ok()) return f.status();
+  }
+  if (config.fill_from.empty() && (!config.fill_tls_ca.empty() || !config.fill_tls_name.empty())) {
+    return Status::InvalidArgument("--fill-tls-ca and --fill-tls-name go with --fill-from");
+  }
+  if (config.fill_tls_ca.empty() && !config.fill_tls_name.empty()) {
+    return Status::InvalidArgument("--fill-tls-name needs --fill-tls-ca");
   }
   if (config.read_only && config.max_cache_bytes > 0) {
     return Status::InvalidArgument("--max-cache-bytes bounds a writer's file; a --read-only replica writes none");

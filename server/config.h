@@ -54,6 +54,11 @@ struct ServerConfig {
   // memory only. Precompute is refused (FAILED_PRECONDITION).
   bool read_only = false;
   std::string fill_from;
+  // With fill_from: speak TLS to the writer, trusting this PEM root
+  // certificate, and check the writer's certificate for this name (default:
+  // the host of fill_from).
+  std::string fill_tls_ca;
+  std::string fill_tls_name;
   double fill_timeout_seconds = 600.0;
   // A writer's bound on its cache file, in bytes (0: none): the least
   // recently served sets are evicted to stay under it.

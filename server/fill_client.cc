@@ -32,9 +32,18 @@ Status FromGrpc(const grpc::Status& s, const std::string& what) {
 
 }  // namespace
 
-FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds) {
+FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds,
+                            const std::string& tls_ca_pem, const std::string& tls_name) {
+  std::shared_ptr<grpc::ChannelCredentials> creds = grpc::InsecureChannelCredentials();
+  grpc::ChannelArguments args;
+  if (!tls_ca_pem.empty()) {
+    grpc::SslCredentialsOptions ssl;
+    ssl.pem_root_certs = tls_ca_pem;
+    creds = grpc::SslCredentials(ssl);
+    if (!tls_name.empty()) args.SetSslTargetNameOverride(tls_name);
+  }
   auto stub = std::shared_ptr<v1::AlignSet::Stub>(
-      v1::AlignSet::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())));
+      v1::AlignSet::NewStub(grpc::CreateCustomChannel(address, creds, args)));
   return [stub, address, token, timeout_seconds](const storage::SetKey& key,
                                                  const FillCancelled& cancelled) -> StatusOr<storage::SetRecord> {
     const std::string name = KeyString(key);

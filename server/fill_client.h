@@ -20,6 +20,10 @@ namespace alignset::server {
 // the job when no one else waits) and the fill returns CANCELLED.
 using FillCancelled = std::function<bool()>;
 using FillFunction = std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const FillCancelled&)>;
-FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds);
+// With `tls_ca_pem` (a PEM root certificate, not a path) the channel speaks
+// TLS and checks the writer's certificate for `tls_name` (empty: the host of
+// `address`); without it, plaintext.
+FillFunction MakeWriterFill(const std::string& address, const std::string& token, double timeout_seconds,
+                            const std::string& tls_ca_pem = "", const std::string& tls_name = "");
 
 }  // namespace alignset::server

@@ -156,7 +156,17 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   // verify`); an immutable file cannot change under the server.
   if (config.quick_check && !config.read_only) impl->integrity->CheckInBackground("at start");
   so.read_only = config.read_only;
-  if (!config.fill_from.empty()) so.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds);
+  if (!config.fill_from.empty()) {
+    std::string ca;
+    if (!config.fill_tls_ca.empty()) {
+      std::ifstream in(config.fill_tls_ca, std::ios::binary);
+      std::ostringstream pem;
+      pem << in.rdbuf();
+      if (!in || pem.str().empty()) return Status::InvalidArgument("cannot read --fill-tls-ca " + config.fill_tls_ca);
+      ca = pem.str();
+    }
+    so.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds, ca, config.fill_tls_name);
+  }
   so.max_cache_bytes = config.max_cache_bytes;
   // Beside the file it orders (a replica never evicts).
   if (config.max_cache_bytes > 0 && !config.read_only) so.eviction_order_file = impl->db_path + ".served";

@@ -256,11 +256,45 @@ TEST(Replica, AnInFlightFillIsCancelledWithItsCaller) {
   ASSERT_TRUE(Get(rs.get(), 64, {30}, &resp).ok());
 }
 
+// --fill-from a writer that serves TLS: the replica trusts the writer's
+// certificate (--fill-tls-ca, --fill-tls-name) and fills over TLS; a replica
+// that speaks plaintext to the same writer gets no set (UNAVAILABLE) and
+// serves on.
+TEST(Replica, FillFromAWriterOverTls) {
+  TempDir shipped, writer_dir, replica_dir, plain_dir;
+  MakeShippedCache(shipped.path());
+  const std::string d = writer_dir.path();
+  auto gen = RunCommand("openssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes "
+                        "-days 1 -subj /CN=localhost -addext subjectAltName=DNS:localhost -keyout " +
+                        d + "/key.pem -out " + d + "/cert.pem");
+  ASSERT_EQ(gen.exit_code, 0) << gen.output;
+  ServerProcess writer(writer_dir.path(), With(kFast, {"--tls-cert", d + "/cert.pem", "--tls-key", d + "/key.pem"}));
+  ASSERT_EQ(writer.error(), "");
+  const std::string file = shipped.path() + "/cache.sqlite";
+  ServerProcess replica(replica_dir.path(),
+                        With(kFast, {"--read-only", "--db", file, "--fill-from", writer.address(), "--fill-tls-ca",
+                                     d + "/cert.pem", "--fill-tls-name", "localhost"}));
+  ASSERT_EQ(replica.error(), "");
+  auto rs = OwnStub(replica.address());
+  v1::AlignedSetResponse resp;
+  ASSERT_TRUE(Get(rs.get(), 128, {41}, &resp).ok());
+  EXPECT_TRUE(resp.metadata().not_stored());
+  EXPECT_EQ(GetMetrics(replica.address()).sets_filled(), 1u);
+
+  ServerProcess plain(plain_dir.path(), With(kFast, {"--read-only", "--db", file, "--fill-from", writer.address()}));
+  ASSERT_EQ(plain.error(), "");
+  auto ps = OwnStub(plain.address());
+  const grpc::Status refused = Get(ps.get(), 128, {41}, &resp);
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::UNAVAILABLE) << refused.error_message();
+  ASSERT_TRUE(Get(ps.get(), 64, {30}, &resp).ok());  // serves on
+}
+
 TEST(Replica, ConfigurationMistakesAreUsageErrors) {
   const std::string bin = ServerBinary();
   for (const std::string flags : {"--fill-from 127.0.0.1:1", "--read-only --max-cache-bytes 10000000",
                                   "--max-cache-bytes 1000", "--read-only=maybe",
-                                  "--metrics-listen 127.0.0.1:70000"}) {
+                                  "--metrics-listen 127.0.0.1:70000", "--read-only --fill-tls-ca a.pem",
+                                  "--read-only --fill-from 127.0.0.1:1 --fill-tls-name localhost"}) {
     const CommandResult r = RunCommand(bin + " " + flags + " --db /nonexistent/x.sqlite");
     EXPECT_EQ(r.exit_code, 2) << flags << ": " << r.output;
   }
