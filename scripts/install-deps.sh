@@ -5,8 +5,8 @@
 #   scripts/install-deps.sh          what building and running alignset needs (the
 #                                    quickstart, the container image's build stage)
 #   scripts/install-deps.sh --test   that, plus what the test suite, the benchmarks,
-#                                    the plots, the container test and the pbrt-v4
-#                                    build need (scripts/test.sh)
+#                                    the plots, the container test, the pbrt-v4
+#                                    build and the fuzzers need (scripts/test.sh)
 #   scripts/install-deps.sh --pbrt   the build's, plus pbrt-v4's (integrations/pbrt-v4)
 set -euo pipefail
 
@@ -38,9 +38,13 @@ PBRT_PACKAGES=(
   libglfw3-dev libnanovdb-dev liblodepng-dev libqoi-dev zlib1g-dev libgl-dev ccache
 )
 
+# Debian's clang with libFuzzer's runtime: the fuzzers of fuzz/ (scripts/fuzz.sh,
+# and their short run in the test command).
+FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+
 case "${1:-}" in
   "") PACKAGES=("${BUILD_PACKAGES[@]}") ;;
-  --test) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${PBRT_PACKAGES[@]}") ;;
+  --test) PACKAGES=("${BUILD_PACKAGES[@]}" "${TEST_PACKAGES[@]}" "${PBRT_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}") ;;
   --pbrt) PACKAGES=("${BUILD_PACKAGES[@]}" "${PBRT_PACKAGES[@]}") ;;
   *) echo "usage: $0 [--test | --pbrt]" >&2; exit 2 ;;
 esac

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs the build and test dependencies, builds everything, runs
 # the whole test suite:
-# the GoogleTest suites (core, storage, server, end-to-end over loopback), the
-# Kubernetes manifest checks, pbrt-v4 with the aligned sampler (given
+# the GoogleTest suites (core, storage, server, end-to-end over loopback), a
+# short run of every fuzzer (fuzz/), the Kubernetes manifest checks, pbrt-v4 with the aligned sampler (given
 # ALIGNSET_PBRT_SOURCE, a pbrt-v4 source folder), and, as root, the real container image build and
 # run (deploy/test-container.sh). ALIGNSET_SKIP_CONTAINER=1 leaves the image
 # test out (it needs root and takes minutes).
@@ -20,6 +20,10 @@ else
   echo "test.sh: no ALIGNSET_PBRT_SOURCE: pbrt-v4 is not built and its test is skipped"
 fi
 (cd "$BUILD_DIR" && ctest -j "${JOBS:-$(nproc)}" --output-on-failure --timeout 900)
+
+# Every fuzzer of fuzz/ for a short run from its seed corpus (libFuzzer with
+# AddressSanitizer and UndefinedBehaviorSanitizer; scripts/fuzz.sh runs them longer).
+bash scripts/fuzz.sh "${ALIGNSET_FUZZ_SECONDS:-20}"
 
 bash deploy/check-manifests.sh
 if [ "${ALIGNSET_SKIP_CONTAINER:-0}" = 1 ]; then

@@ -68,6 +68,8 @@ TOP_ALLOWED = {
     # API only, as a renderer author's own checkout would use it.
     "integrations": [PUBLIC],
     "bench": PRODUCT,
+    # The fuzzers drive each parser where it lives (fuzz/README.md).
+    "fuzz": PRODUCT,
     "tests": PRODUCT + ["bench"],
     "deploy": ["proto"],
     "scripts": [],
