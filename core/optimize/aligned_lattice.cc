@@ -307,23 +307,6 @@ std::shared_ptr<const std::vector<LatticeTermCache::Terms>> CoarseTerms(
 
 }  // namespace
 
-StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
-                                     const AlignedLatticeOptions& options) {
-  if (Status s = Validate(n, directions_deg, options); !s.ok()) return s;
-  if (g == 0 || g >= n || std::gcd(g, n) != 1) {
-    return Status::InvalidArgument("aligned lattice: g = " + std::to_string(g) + " is not a generator coprime to N = " +
-                                   std::to_string(n));
-  }
-  const int r_full = FullRadius(n), r_first = FirstRadius(n);
-  const bool folded = options.folded;
-  const Family family = r_full > r_first ? ScoredFamily(directions_deg, options.window_deg, WindowSteps(folded),
-                                                        FullOffsets(folded), r_full, folded)
-                                         : ScoredFamily(directions_deg, options.window_deg, 1,
-                                                        CoarseOffsets(folded), r_first, folded);
-  const Terms t = ScoreTerms(n, g, r_full, family);  // r_first is r_full where the coarse family is final
-  return Combine(t.directions, family.Edges(), t.corner);
-}
-
 StatusOr<std::vector<double>> AlignedLatticeScores(uint32_t n, std::span<const uint32_t> generators,
                                                   const std::vector<double>& directions_deg,
                                                   const AlignedLatticeOptions& options) {
@@ -346,6 +329,14 @@ StatusOr<std::vector<double>> AlignedLatticeScores(uint32_t n, std::span<const u
     scores[j] = Combine(t.directions, family.Edges(), t.corner);
   });
   return scores;
+}
+
+StatusOr<double> AlignedLatticeScore(uint32_t n, uint32_t g, const std::vector<double>& directions_deg,
+                                     const AlignedLatticeOptions& options) {
+  const uint32_t one[] = {g};
+  auto scores = AlignedLatticeScores(n, one, directions_deg, options);
+  if (!scores.ok()) return scores.status();
+  return scores->front();
 }
 
 StatusOr<std::vector<AlignedLatticeChoice>> ChooseAlignedLatticeGenerators(
