@@ -3,6 +3,7 @@
 //
 //   alignset_soak --server-bin PATH --cli-bin PATH --work DIR --seconds S
 //                 [--report FILE] [--kill-at 0.5] [--max-growth-mb 32]
+//                 [--samples FILE]   (every 2 s sample, TSV, for plotting)
 //
 // It starts the server itself (fork/exec, 127.0.0.1 on a port it picks, a
 // fresh cache in DIR), fills the N = 1024 one-direction space, and runs:
@@ -18,7 +19,9 @@
 //   - a cancelling client: GetAlignedSet of new N = 4096 keys with a 30 ms
 //     deadline (DEADLINE_EXCEEDED expected; the abandoned job is dropped);
 //   - a monitor: the server's resident memory and threads every 2 s
-//     (/proc/PID/status), and whether it is still alive.
+//     (/proc/PID/status), whether it is still alive, and where the memory is
+//     (GetMetrics: malloc in use and kept free, the set LRU, lattice terms,
+//     SQLite), so that growth can be put down to a part and its bound.
 // At --kill-at of the run the server gets SIGKILL and is started again on
 // the same port and file. Every set served is remembered by its request and
 // a hash of its bytes: the same request must always get the same bytes. At
@@ -61,7 +64,7 @@ using alignset::ServiceClient;
 using alignset::Status;
 
 struct Args {
-  std::string server_bin, cli_bin, work, report;
+  std::string server_bin, cli_bin, work, report, samples;
   double seconds = 120;
   double kill_at = 0.5;
   double max_growth_mb = 32;
@@ -100,7 +103,22 @@ struct Sample {
   double rss_mb;
   int threads;
   int life;  // 1: the first server, 2: after the restart
+  // From GetMetrics (MB; -1 when the call failed): malloc's bytes in use and
+  // kept free, the set LRU, lattice terms, SQLite's own.
+  double heap_mb = -1, free_mb = -1, lru_mb = -1, lattice_mb = -1, sqlite_mb = -1;
+  double anon_mb = -1, file_mb = -1;  // RssAnon, RssFile of /proc/PID/status
 };
+
+// Least-squares slope of y over t, per hour.
+double SlopePerHour(const std::vector<std::pair<double, double>>& ty) {
+  if (ty.size() < 2) return 0;
+  double st = 0, sy = 0;
+  for (const auto& [t, y] : ty) st += t, sy += y;
+  const double mt = st / ty.size(), my = sy / ty.size();
+  double num = 0, den = 0;
+  for (const auto& [t, y] : ty) num += (t - mt) * (y - my), den += (t - mt) * (t - mt);
+  return den > 0 ? 3600.0 * num / den : 0;
+}
 
 class Soak {
  public:
@@ -155,6 +173,8 @@ class Soak {
   uint64_t damaged_ = 0;
   uint64_t unexpected_ = 0;
   std::vector<Sample> samples_;
+  std::unique_ptr<ServiceClient> metrics_client_;  // the monitor's own
+  std::string allocator_;                          // as the server names it
 };
 
 pid_t Soak::StartServer() {
@@ -351,15 +371,38 @@ void Soak::Monitor() {
     }
     std::ifstream in("/proc/" + std::to_string(pid) + "/status");
     std::string line;
-    double rss = -1;
+    double rss = -1, anon = -1, file = -1;
     int threads = -1;
     while (std::getline(in, line)) {
       if (line.rfind("VmRSS:", 0) == 0) rss = std::stod(line.substr(6)) / 1024.0;
+      if (line.rfind("RssAnon:", 0) == 0) anon = std::stod(line.substr(8)) / 1024.0;
+      if (line.rfind("RssFile:", 0) == 0) file = std::stod(line.substr(8)) / 1024.0;
       if (line.rfind("Threads:", 0) == 0) threads = std::stoi(line.substr(8));
     }
     if (rss >= 0) {
+      Sample sample{Now(), rss, threads, Now() < kill_time_ ? 1 : 2};
+      sample.anon_mb = anon;
+      sample.file_mb = file;
+      if (!killing_) {
+        if (!metrics_client_) metrics_client_ = Connect(true);
+        alignset::CallOptions call;
+        call.timeout_seconds = 1.0;
+        auto m = metrics_client_ ? metrics_client_->GetMetrics(call)
+                                 : alignset::StatusOr<alignset::ServiceMetrics>(Status::Unavailable("no client"));
+        if (m.ok()) {
+          constexpr double kMB = 1048576.0;
+          sample.heap_mb = m->heap_allocated_bytes / kMB;
+          sample.free_mb = m->heap_free_bytes / kMB;
+          sample.lru_mb = m->memory_cache_bytes / kMB;
+          sample.lattice_mb = m->lattice_terms_bytes / kMB;
+          sample.sqlite_mb = m->sqlite_memory_bytes / kMB;
+          if (allocator_.empty()) allocator_ = m->allocator;
+        } else {
+          metrics_client_.reset();  // a new connection after a restart
+        }
+      }
       std::lock_guard<std::mutex> lock(mu_);
-      samples_.push_back({Now(), rss, threads, Now() < kill_time_ ? 1 : 2});
+      samples_.push_back(sample);
     }
     std::this_thread::sleep_for(std::chrono::seconds(2));
   }
@@ -489,6 +532,31 @@ int Soak::Run() {
     tmax = std::max(tmax, s.threads);
   }
   const double growth = base < 0 ? 0 : peak - base;
+  // Each part's first, peak, last and trend after warm-up (metrics samples).
+  struct Part {
+    const char* name;
+    double Sample::*field;
+    double first = -1, peak = 0, last = -1;
+    std::vector<std::pair<double, double>> ty = {};
+  };
+  std::vector<Part> parts = {{"resident (VmRSS)", &Sample::rss_mb},
+                             {"resident anonymous (RssAnon: heap, stacks)", &Sample::anon_mb},
+                             {"resident files (RssFile: code, libraries, SQLite -shm)", &Sample::file_mb},
+                             {"malloc in use", &Sample::heap_mb},
+                             {"allocator kept, not in use", &Sample::free_mb},
+                             {"set LRU (--memory-cache-mb 16)", &Sample::lru_mb},
+                             {"lattice terms", &Sample::lattice_mb},
+                             {"SQLite", &Sample::sqlite_mb}};
+  for (Part& p : parts) {
+    for (const Sample& s : samples_) {
+      const double v = s.*p.field;
+      if (s.life != 2 || s.t < warm || v < 0) continue;
+      if (p.first < 0) p.first = v;
+      p.last = v;
+      p.peak = std::max(p.peak, v);
+      p.ty.emplace_back(s.t, v);
+    }
+  }
   const bool memory_ok = base >= 0 && growth <= args_.max_growth_mb;
   const bool ok = lost == 0 && damaged_ == 0 && crashes_ == 0 && verify_rc == 0 && unexpected_ == 0 && memory_ok;
 
@@ -520,7 +588,16 @@ int Soak::Run() {
                 "(growth %.1f MB, bound %.0f) |\n",
                 warm, base, peak, last, growth, args_.max_growth_mb);
   r << buf;
-  r << "| server threads after warm-up: min, max | " << tmin << ", " << tmax << " |\n\n";
+  r << "| server threads after warm-up: min, max | " << tmin << ", " << tmax << " |\n";
+  r << "| the server's allocator (GetMetrics) | " << (allocator_.empty() ? "not reported" : allocator_) << " |\n\n";
+  r << "## Where the memory is after warm-up (GetMetrics every 2 s)\n\n"
+       "| part | first MB | peak MB | last MB | trend MB/h (least squares) |\n|---|---:|---:|---:|---:|\n";
+  for (const Part& p : parts) {
+    std::snprintf(buf, sizeof buf, "| %s | %.1f | %.1f | %.1f | %+.2f |\n", p.name, p.first, p.peak, p.last,
+                  SlopePerHour(p.ty));
+    r << buf;
+  }
+  r << "\n";
   r << "## Cache-hit latency (N = 1024: 2 renderer clients with bursts of 16 GetAlignedSet calls, one with GetAlignedSets batches of 16)\n\n";
   auto latency_table = [&](const char* what, const std::vector<double>* lives) {
     r << "| server | " << what << " | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|\n";
@@ -541,12 +618,23 @@ int Soak::Run() {
   r << "\nExpected non-OK codes: DEADLINE_EXCEEDED (the cancelling client's 30 ms deadline, the greedy "
        "client's 15 s one), UNAVAILABLE around the restart, RESOURCE_EXHAUSTED (queue bounds).\n";
   r << "\n## Server memory and threads over time (every 2 s; shown every ~" << std::max<size_t>(1, samples_.size() / 30) * 2
-    << " s)\n\n| t s | server | RSS MB | threads |\n|---:|---:|---:|---:|\n";
+    << " s)\n\n| t s | server | RSS MB | anonymous | files | allocated | kept | set LRU | SQLite | threads |\n"
+       "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   const size_t step = std::max<size_t>(1, samples_.size() / 30);
   for (size_t i = 0; i < samples_.size(); i += step) {
-    std::snprintf(buf, sizeof buf, "| %.0f | %d | %.1f | %d |\n", samples_[i].t, samples_[i].life, samples_[i].rss_mb,
-                  samples_[i].threads);
+    const Sample& s = samples_[i];
+    std::snprintf(buf, sizeof buf, "| %.0f | %d | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %d |\n", s.t, s.life,
+                  s.rss_mb, s.anon_mb, s.file_mb, s.heap_mb, s.free_mb, s.lru_mb, s.sqlite_mb, s.threads);
     r << buf;
+  }
+  if (!args_.samples.empty()) {
+    std::ofstream out(args_.samples);
+    out << "t_s\tlife\trss_mb\tanon_mb\tfile_mb\theap_mb\tfree_mb\tlru_mb\tlattice_mb\tsqlite_mb\tthreads\n";
+    for (const Sample& s : samples_) {
+      out << s.t << "\t" << s.life << "\t" << s.rss_mb << "\t" << s.anon_mb << "\t" << s.file_mb << "\t" << s.heap_mb
+          << "\t" << s.free_mb << "\t" << s.lru_mb << "\t" << s.lattice_mb << "\t" << s.sqlite_mb << "\t"
+          << s.threads << "\n";
+    }
   }
   const std::string text = r.str();
   std::fputs(text.c_str(), stdout);
@@ -567,6 +655,7 @@ int main(int argc, char** argv) {
     else if (k == "--cli-bin") a.cli_bin = v;
     else if (k == "--work") a.work = v;
     else if (k == "--report") a.report = v;
+    else if (k == "--samples") a.samples = v;
     else if (k == "--seconds") a.seconds = std::stod(v);
     else if (k == "--kill-at") a.kill_at = std::stod(v);
     else if (k == "--max-growth-mb") a.max_growth_mb = std::stod(v);

@@ -100,6 +100,22 @@ CLI::Validator ConstructionName() {
   return CLI::IsMember(names);
 }
 
+namespace {
+bool* parse_only_ran = nullptr;  // ParseOnlyForFuzzing
+}  // namespace
+
+void ParseOnlyForFuzzing(bool* ran) { parse_only_ran = ran; }
+
+void OnRun(CLI::App* command, std::function<int()> run) {
+  command->callback([run = std::move(run)] {
+    if (parse_only_ran != nullptr) {
+      *parse_only_ran = true;
+      return;
+    }
+    Finish(run());
+  });
+}
+
 CLI::App* AddCommand(CLI::App& parent, const std::string& name, const std::string& description) {
   // The footer (exit statuses) is inherited from the parent.
   return parent.add_subcommand(name, description);

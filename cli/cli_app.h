@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "core/util/status.h"
@@ -52,6 +53,15 @@ CLI::Validator ConstructionName();
 // A subcommand of `parent`; it inherits the parent's footer (the exit
 // statuses), so set that first.
 CLI::App* AddCommand(CLI::App& parent, const std::string& name, const std::string& description);
+
+// `run` is what `command` does once its command line parsed: its exit status
+// ends the program (Finish). `run` owns the options the command's flags were
+// parsed into.
+void OnRun(CLI::App* command, std::function<int()> run);
+
+// Parse only, for the command-line fuzzer (fuzz/): from now on a command
+// whose command line parsed sets *ran instead of running; null runs again.
+void ParseOnlyForFuzzing(bool* ran);
 
 // Parses argv and runs the chosen subcommand's callback. Help (--help, -h, or
 // the word `help` where a command is expected) and --version go to stdout

@@ -73,7 +73,7 @@ void AddAlignCommand(CLI::App& app) {
       ->allow_extra_args(false)
       ->check(FiniteNumber());
   c->add_option("-o,--out", o->out, "output file: UTK text, .npy, .csv by extension; - stdout")->required();
-  c->callback([o] { Finish(RunAlign(*o)); });
+  OnRun(c, [o] { return RunAlign(*o); });
 }
 
 }  // namespace alignset::cli

@@ -174,7 +174,7 @@ void AddAnalyzeCommand(CLI::App& app) {
   c->add_option("--threads", o->threads, "engine threads (0: all cores)")
       ->capture_default_str()
       ->check(IntegerIn(0, 1024));
-  c->callback([o] { Finish(RunAnalyze(*o)); });
+  OnRun(c, [o] { return RunAnalyze(*o); });
 }
 
 }  // namespace alignset::cli

@@ -241,7 +241,7 @@ CLI::App* AddSub(CLI::App* cache, const std::string& name, const std::string& de
                  int (*run)(const CacheOptions&), std::shared_ptr<CacheOptions>* options) {
   auto o = std::make_shared<CacheOptions>();
   CLI::App* c = AddCommand(*cache, name, description);
-  c->callback([o, run] { Finish(run(*o)); });
+  OnRun(c, [o, run] { return run(*o); });
   *options = o;
   return c;
 }

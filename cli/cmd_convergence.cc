@@ -267,7 +267,7 @@ void AddConvergenceCommand(CLI::App& app) {
   c->add_option("--threads", o->threads, "engine threads (0: all cores)")
       ->capture_default_str()
       ->check(IntegerIn(0, 1024));
-  c->callback([o] { Finish(RunConvergence(*o)); });
+  OnRun(c, [o] { return RunConvergence(*o); });
 }
 
 }  // namespace alignset::cli

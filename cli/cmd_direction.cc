@@ -106,7 +106,7 @@ void AddDirectionCommand(CLI::App& app) {
       "dominant direction (constant, noise, a disk) prints 'theta none' and 'reason ...'\n"
       "and exits with status 1.\n\n" +
       std::string(kExitStatusHelp));
-  c->callback([o] { Finish(RunDirection(*o)); });
+  OnRun(c, [o] { return RunDirection(*o); });
 }
 
 }  // namespace alignset::cli

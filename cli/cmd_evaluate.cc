@@ -121,7 +121,7 @@ void AddEvaluateCommand(CLI::App& app) {
   c->add_option("--threads", o->threads, "threads of the spectral engine (0: all cores)")
       ->capture_default_str()
       ->check(IntegerIn(0, 1024));
-  c->callback([o] { Finish(RunEvaluate(*o)); });
+  OnRun(c, [o] { return RunEvaluate(*o); });
 }
 
 }  // namespace alignset::cli

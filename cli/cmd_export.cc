@@ -163,7 +163,7 @@ void AddExportCommand(CLI::App& app) {
   c->add_option("--profile", o->profile, "the optimized sets' profile id (default: the server's default profile)");
   c->add_option("--seed", o->seed, "the server's --seed, for its default profile")->check(SeedValue());
   c->add_option("-o,--out", o->out, "the table file")->required();
-  c->callback([o] { Finish(RunExport(*o)); });
+  OnRun(c, [o] { return RunExport(*o); });
 }
 
 }  // namespace alignset::cli

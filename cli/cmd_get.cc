@@ -322,7 +322,7 @@ void AddGetCommand(CLI::App& app) {
       ->check(ConstructionName());
   c->add_flag("-q,--quiet", o->quiet, "no progress display");
   AddServiceOptions(c, &o->service);
-  c->callback([o] { Finish(RunGet(*o)); });
+  OnRun(c, [o] { return RunGet(*o); });
 }
 
 }  // namespace alignset::cli

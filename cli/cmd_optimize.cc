@@ -438,7 +438,7 @@ void AddOptimizeCommand(CLI::App& app) {
   c->add_option("--radius", o->radius, "disk radius R (default: from N)")
       ->check(FiniteNumber())
       ->group(tuning);
-  c->callback([o] { Finish(RunOptimize(*o)); });
+  OnRun(c, [o] { return RunOptimize(*o); });
 }
 
 }  // namespace alignset::cli

@@ -136,7 +136,7 @@ void AddPrecomputeCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(ConstructionName());
   AddServiceOptions(c, &o->service);
-  c->callback([o] { Finish(RunPrecompute(*o)); });
+  OnRun(c, [o] { return RunPrecompute(*o); });
 }
 
 }  // namespace alignset::cli

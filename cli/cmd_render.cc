@@ -164,7 +164,7 @@ void AddRenderCommand(CLI::App& app) {
   c->add_option("--threads", o->request.threads, "render threads")->capture_default_str()->check(IntegerIn(1, 256));
   AddServiceOptions(c, &o->service);
   c->footer([] { return SamplerHelp(); });
-  c->callback([o] { Finish(Run(*o)); });
+  OnRun(c, [o] { return Run(*o); });
 }
 
 }  // namespace alignset::cli

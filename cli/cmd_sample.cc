@@ -89,9 +89,9 @@ void AddSampleCommand(CLI::App& app) {
       ->check(IntegerIn(1, 1 << 16));
   c->add_flag("--list", o->list, "list the sampler kinds and exit");
   c->footer([] { return SamplerList(); });
-  c->callback([o, shear] {
+  OnRun(c, [o, shear] {
     o->sheared = shear->count() > 0;
-    Finish(RunSample(*o));
+    return RunSample(*o);
   });
 }
 

@@ -64,6 +64,18 @@ int RunStats(const StatsOptions& o) {
   } else {
     std::printf("bounded file      unbounded, evictions %llu\n", (unsigned long long)m.cache_evictions);
   }
+  // Where the memory is: a cache at its bound is growth that stops.
+  constexpr double kMiB = 1048576.0;
+  std::printf("memory            resident %.1f MiB (%.1f anonymous, %.1f files); %s %.1f MiB in use, "
+              "%.1f MiB kept\n",
+              m.resident_bytes / kMiB, m.resident_anonymous_bytes / kMiB, m.resident_file_bytes / kMiB,
+              m.allocator.empty() ? "malloc" : m.allocator.c_str(), m.heap_allocated_bytes / kMiB,
+              m.heap_free_bytes / kMiB);
+  std::printf("memory caches     sets %.1f of %.1f MiB, lattice terms %.1f of %.1f MiB, "
+              "SQLite %.1f MiB (peak %.1f)\n",
+              m.memory_cache_bytes / kMiB, m.memory_cache_capacity_bytes / kMiB, m.lattice_terms_bytes / kMiB,
+              m.lattice_terms_capacity_bytes / kMiB, m.sqlite_memory_bytes / kMiB,
+              m.sqlite_memory_peak_bytes / kMiB);
   if (o.list) {
     auto keys = (*client)->ListCachedSets(static_cast<uint32_t>(o.n), "", static_cast<uint32_t>(o.limit));
     if (!keys.ok()) return Failure(keys.status());
@@ -84,7 +96,7 @@ void AddStatsCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(IntegerIn(0, UINT32_MAX));
   AddServiceOptions(c, &o->service);
-  c->callback([o] { Finish(RunStats(*o)); });
+  OnRun(c, [o] { return RunStats(*o); });
 }
 
 }  // namespace alignset::cli

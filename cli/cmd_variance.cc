@@ -69,7 +69,7 @@ void AddVarianceCommand(CLI::App& app) {
   c->add_option("-s,--seed", o->seed, "seed of the shifts")
       ->capture_default_str()
       ->check(SeedValue());
-  c->callback([o] { Finish(RunVariance(*o)); });
+  OnRun(c, [o] { return RunVariance(*o); });
 }
 
 }  // namespace alignset::cli

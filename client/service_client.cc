@@ -140,6 +140,18 @@ ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
   m.cache_evictions = r.cache_evictions();
   m.cache_evicted_bytes = r.cache_evicted_bytes();
   m.cache_vacuums = r.cache_vacuums();
+  m.resident_bytes = r.resident_bytes();
+  m.resident_anonymous_bytes = r.resident_anonymous_bytes();
+  m.resident_file_bytes = r.resident_file_bytes();
+  m.allocator = r.allocator();
+  m.heap_allocated_bytes = r.heap_allocated_bytes();
+  m.heap_free_bytes = r.heap_free_bytes();
+  m.memory_cache_bytes = r.memory_cache_bytes();
+  m.memory_cache_capacity_bytes = r.memory_cache_capacity_bytes();
+  m.lattice_terms_bytes = r.lattice_terms_bytes();
+  m.lattice_terms_capacity_bytes = r.lattice_terms_capacity_bytes();
+  m.sqlite_memory_bytes = r.sqlite_memory_bytes();
+  m.sqlite_memory_peak_bytes = r.sqlite_memory_peak_bytes();
   return m;
 }
 

@@ -36,7 +36,7 @@ bash scripts/install-deps.sh --test
 GEN=()
 command -v ninja >/dev/null 2>&1 && GEN=(-G Ninja)
 cmake -S . -B "$BUILD_DIR" "${GEN[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DALIGNSET_CUDA=OFF \
-  -DALIGNSET_BUILD_TESTS=ON -DALIGNSET_BUILD_BENCH=OFF \
+  -DALIGNSET_BUILD_TESTS=ON -DALIGNSET_BUILD_BENCH=OFF -DALIGNSET_JEMALLOC=OFF \
   -DCMAKE_CXX_FLAGS="$FLAGS" -DCMAKE_EXE_LINKER_FLAGS="${FLAGS%% -O1*}" -DCMAKE_SHARED_LINKER_FLAGS="${FLAGS%% -O1*}"
 cmake --build "$BUILD_DIR" -j "${JOBS:-$(nproc)}"
 (cd "$BUILD_DIR" && ctest -j "${JOBS:-$(nproc)}" --output-on-failure --timeout 1800 "${TESTS[@]}" "$@")

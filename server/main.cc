@@ -10,6 +10,13 @@
 #include "server/server.h"
 #include "storage/profile.h"
 
+#if defined(ALIGNSET_WITH_JEMALLOC)
+// jemalloc's options, read at its start: a thread of its own purges freed
+// pages on their 10 s decay even while the server is idle (otherwise purging
+// waits for the next allocation).
+extern "C" const char* malloc_conf = "background_thread:true";
+#endif
+
 int main(int argc, char** argv) {
   // --version wins over every other flag, as --help does.
   for (int i = 1; i < argc; ++i) {

@@ -59,6 +59,18 @@ const std::map<std::string, Meta>& Fields() {
       {"cache_evicted_bytes", {Kind::kCounter, "bytes of the evicted sets in the file (estimated)"}},
       {"cache_file_bytes", {Kind::kGauge, "size of the cache file at the last look (bounded writers)"}},
       {"cache_vacuums", {Kind::kCounter, "background incremental vacuum passes"}},
+      {"resident_bytes", {Kind::kGauge, "the process's resident memory (VmRSS)"}},
+      {"heap_allocated_bytes", {Kind::kGauge, "malloc: bytes handed out and not yet freed (glibc)"}},
+      {"heap_free_bytes", {Kind::kGauge, "malloc: freed bytes kept for reuse, not returned to the system"}},
+      {"memory_cache_bytes", {Kind::kGauge, "decoded sets in the in-memory LRU"}},
+      {"memory_cache_capacity_bytes", {Kind::kGauge, "the in-memory LRU's bound (--memory-cache-mb)"}},
+      {"lattice_terms_bytes", {Kind::kGauge, "lattice search terms kept between keys"}},
+      {"lattice_terms_capacity_bytes", {Kind::kGauge, "their bound (--lattice-terms-mb)"}},
+      {"sqlite_memory_bytes", {Kind::kGauge, "SQLite's own allocations (page caches, statements)"}},
+      {"sqlite_memory_peak_bytes", {Kind::kGauge, "SQLite's allocations at their highest since start"}},
+      {"allocator", {Kind::kGauge, "the server's malloc (label allocator), always 1"}},
+      {"resident_anonymous_bytes", {Kind::kGauge, "resident memory that is anonymous (heap, thread stacks)"}},
+      {"resident_file_bytes", {Kind::kGauge, "resident memory backed by files (code, libraries, mapped files)"}},
   };
   return fields;
 }
@@ -107,6 +119,18 @@ std::string PrometheusText(const v1::MetricsResponse& values, const Metrics& met
       case FieldDescriptor::CPPTYPE_DOUBLE: v = r->GetDouble(values, f); break;
       case FieldDescriptor::CPPTYPE_FLOAT: v = r->GetFloat(values, f); break;
       case FieldDescriptor::CPPTYPE_BOOL: v = r->GetBool(values, f) ? 1.0 : 0.0; break;
+      case FieldDescriptor::CPPTYPE_STRING: {
+        // A text (the allocator's name) is an info metric: the value in a label.
+        std::string text = r->GetString(values, f);
+        for (char& c : text) {
+          if (c == '"' || c == '\\' || c == '\n') c = '_';
+        }
+        const std::string name = "alignset_" + f->name() + "_info";
+        const auto meta = Fields().find(f->name());
+        Header(&out, name, "gauge", meta == Fields().end() ? "MetricsResponse." + f->name() : meta->second.help);
+        out += name + "{" + f->name() + "=\"" + text + "\"} 1\n";
+        continue;
+      }
       default: continue;
     }
     const auto meta = Fields().find(f->name());

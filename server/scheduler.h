@@ -213,6 +213,7 @@ class Scheduler {
   uint32_t queue_length() const;
   uint32_t running() const;
   uint32_t paused() const;
+  SetProducer::MemoryUse memory() const { return producer_->memory(); }
   // Calls `until(queue_length, running, paused)` now and at every change of
   // the three, in the thread that changes them and under the scheduler's
   // lock (so it sees every value they pass through, and must be quick and

@@ -9,9 +9,11 @@
 
 #include "server/direction_request.h"
 #include "server/log_text.h"
+#include "server/process_memory.h"
 #include "server/samples.h"
 #include "server/service_internal.h"
 #include "server/validation.h"
+#include "storage/sqlite_handle.h"
 
 namespace alignset::server {
 using service_internal::Clock;
@@ -109,6 +111,20 @@ void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   out->set_cache_evicted_bytes(metrics_->cache_evicted_bytes.load());
   out->set_cache_file_bytes(metrics_->cache_file_bytes.load());
   out->set_cache_vacuums(metrics_->cache_vacuums.load());
+  const ProcessMemory process = ReadProcessMemory();
+  out->set_resident_bytes(process.resident_bytes);
+  out->set_resident_anonymous_bytes(process.resident_anonymous_bytes);
+  out->set_resident_file_bytes(process.resident_file_bytes);
+  out->set_heap_allocated_bytes(process.heap_allocated_bytes);
+  out->set_heap_free_bytes(process.heap_free_bytes);
+  out->set_allocator(process.allocator);
+  const SetProducer::MemoryUse caches = scheduler_->memory();
+  out->set_memory_cache_bytes(static_cast<int64_t>(caches.sets_bytes));
+  out->set_memory_cache_capacity_bytes(static_cast<int64_t>(caches.sets_capacity));
+  out->set_lattice_terms_bytes(static_cast<int64_t>(caches.lattice_bytes));
+  out->set_lattice_terms_capacity_bytes(static_cast<int64_t>(caches.lattice_capacity));
+  out->set_sqlite_memory_bytes(storage::SqliteMemoryUsed());
+  out->set_sqlite_memory_peak_bytes(storage::SqliteMemoryPeak());
 }
 
 grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,

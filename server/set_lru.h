@@ -25,6 +25,7 @@ class SetLru {
   void Put(const std::string& key, std::shared_ptr<const CanonicalEntry> entry);
   void Erase(const std::string& key);
   size_t bytes() const;
+  size_t capacity() const { return capacity_; }
   size_t size() const;
 
  private:

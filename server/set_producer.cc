@@ -52,6 +52,15 @@ storage::SetKey SetProducer::KeyFor(uint32_t n, const CanonicalDirections& dirs,
   return storage::SetKey{n, dirs, ProfileFor(n, construction), realization};
 }
 
+SetProducer::MemoryUse SetProducer::memory() const {
+  MemoryUse m;
+  m.sets_bytes = lru_.bytes();
+  m.sets_capacity = lru_.capacity();
+  m.lattice_bytes = lattice_terms_.stats().bytes;
+  m.lattice_capacity = lattice_terms_.max_bytes();
+  return m;
+}
+
 std::shared_ptr<const CanonicalEntry> SetProducer::FromMemory(const std::string& name,
                                                               const storage::SetKey& key, bool touch) {
   auto hit = lru_.Get(name);

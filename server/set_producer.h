@@ -102,6 +102,13 @@ class SetProducer {
 
   const Options& options() const { return options_; }
 
+  // What its in-memory caches hold against their bounds (GetMetrics).
+  struct MemoryUse {
+    size_t sets_bytes = 0, sets_capacity = 0;        // the LRU of decoded sets
+    size_t lattice_bytes = 0, lattice_capacity = 0;  // lattice search terms
+  };
+  MemoryUse memory() const;
+
  private:
   SetProducer(const Options& options, storage::SetCache* cache, Metrics* metrics);
   std::optional<PointSet> HeldSet(const storage::SetKey& key);

@@ -2,6 +2,9 @@
 
 namespace alignset::storage {
 
+int64_t SqliteMemoryUsed() { return sqlite3_memory_used(); }
+int64_t SqliteMemoryPeak() { return sqlite3_memory_highwater(/*resetFlag=*/0); }
+
 Status SqliteError(int rc, sqlite3* db, std::string_view what) {
   std::string msg(what);
   msg += ": ";

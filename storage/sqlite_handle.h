@@ -16,6 +16,11 @@ namespace alignset::storage {
 // -> ResourceExhausted, cannot open -> NotFound, anything else -> Internal.
 Status SqliteError(int rc, sqlite3* db, std::string_view what);
 
+// SQLite's own allocations in this process (every connection: page caches,
+// statements, schema), now and at their highest since start.
+int64_t SqliteMemoryUsed();
+int64_t SqliteMemoryPeak();
+
 // Owns one connection; closes it on destruction.
 class Db {
  public:

@@ -37,7 +37,11 @@ TEST(MetricsEndpoint, CountersAndHistogramsMoveAfterRequestsAndMatchGetMetrics) 
   const auto* fields = v1::MetricsResponse::descriptor();
   for (int i = 0; i < fields->field_count(); ++i) {
     const std::string name = "alignset_" + fields->field(i)->name();
-    EXPECT_TRUE(before.count(name) || before.count(name + "_total")) << name;
+    const bool text = fields->field(i)->cpp_type() == google::protobuf::FieldDescriptor::CPPTYPE_STRING;
+    EXPECT_TRUE(text ? before.lower_bound(name + "_info{") != before.end() &&
+                           before.lower_bound(name + "_info{")->first.rfind(name + "_info{", 0) == 0
+                     : before.count(name) || before.count(name + "_total"))
+        << name;
   }
 
   auto stub = OwnStub(server.address());
@@ -72,6 +76,68 @@ TEST(MetricsEndpoint, CountersAndHistogramsMoveAfterRequestsAndMatchGetMetrics) 
 
   EXPECT_EQ(HttpRequest(server.metrics_port(), "GET", "/").status, 404);
   EXPECT_EQ(HttpRequest(server.metrics_port(), "POST", "/metrics").status, 405);
+}
+
+// Where the memory is: each cache's bytes against its bound, the process's
+// resident set and malloc's figures, and SQLite's own, so that growth in a
+// soak can be put down to a part (docs/operations.md, "Memory").
+TEST(MetricsEndpoint, MemoryFiguresNameEachCacheAgainstItsBound) {
+  TempDir dir;
+  std::vector<std::string> args = kMetricsServer;
+  for (const char* a : {"--memory-cache-mb", "1", "--lattice-terms-mb", "2"}) args.push_back(a);
+  ServerProcess server(dir.path(), args);
+  ASSERT_EQ(server.error(), "");
+  const v1::MetricsResponse before = GetMetrics(server.address());
+  EXPECT_EQ(before.memory_cache_bytes(), 0);
+  EXPECT_EQ(before.memory_cache_capacity_bytes(), 1 << 20);
+  EXPECT_EQ(before.lattice_terms_bytes(), 0);
+  EXPECT_EQ(before.lattice_terms_capacity_bytes(), 2 << 20);
+  EXPECT_GT(before.resident_bytes(), 1 << 20);
+  // VmRSS = RssAnon + RssFile + RssShmem, read from one /proc/self/status.
+  EXPECT_GT(before.resident_anonymous_bytes(), 0);
+  EXPECT_GT(before.resident_file_bytes(), 0);
+  EXPECT_GE(before.resident_bytes(), before.resident_anonymous_bytes() + before.resident_file_bytes());
+  EXPECT_GT(before.heap_allocated_bytes(), 0);
+  EXPECT_EQ(before.allocator().rfind(ALIGNSET_SERVER_JEMALLOC ? "jemalloc 5." : "glibc", 0), 0u) << before.allocator();
+  EXPECT_GE(before.heap_free_bytes(), 0);
+  EXPECT_GT(before.sqlite_memory_bytes(), 0);
+  EXPECT_GE(before.sqlite_memory_peak_bytes(), before.sqlite_memory_bytes());
+
+  // 24 nets of 4096 points (64 KiB of points each): more than the LRU's
+  // 1 MiB, so it must have evicted and hold no more than its bound.
+  auto stub = OwnStub(server.address());
+  for (int i = 0; i < 24; ++i) {
+    grpc::ClientContext ctx;
+    v1::AlignedSetRequest req = SetRequest(4096, {1.0 + 3.5 * i});
+    req.set_construction("net");
+    v1::AlignedSetResponse resp;
+    ASSERT_TRUE(stub->GetAlignedSet(&ctx, req, &resp).ok()) << i;
+  }
+  {
+    grpc::ClientContext ctx;
+    v1::AlignedSetRequest req = SetRequest(256, {40.0});
+    req.set_construction("lattice");
+    v1::AlignedSetResponse resp;
+    ASSERT_TRUE(stub->GetAlignedSet(&ctx, req, &resp).ok());
+  }
+  const v1::MetricsResponse after = GetMetrics(server.address());
+  EXPECT_GT(after.memory_cache_bytes(), 512 << 10);
+  EXPECT_LE(after.memory_cache_bytes(), after.memory_cache_capacity_bytes());
+  EXPECT_GT(after.lattice_terms_bytes(), 0);
+  EXPECT_LE(after.lattice_terms_bytes(), after.lattice_terms_capacity_bytes());
+  EXPECT_GE(after.sqlite_memory_peak_bytes(), after.sqlite_memory_bytes());
+  // The scrape says the same (gauges, bytes).
+  const auto scraped = Scrape(server.metrics_port());
+  EXPECT_EQ(scraped.at("alignset_memory_cache_capacity_bytes"), 1 << 20);
+  EXPECT_EQ(scraped.at("alignset_memory_cache_bytes"), static_cast<double>(after.memory_cache_bytes()));
+  EXPECT_GT(scraped.at("alignset_resident_bytes"), 0.0);
+  // `alignset stats` prints them, each cache against its bound.
+  const CommandResult stats = RunCommand(std::string(ALIGNSET_CLI_PATH) + " stats --server " + server.address());
+  EXPECT_EQ(stats.exit_code, 0) << stats.output;
+  EXPECT_NE(stats.output.find("memory caches     sets "), std::string::npos) << stats.output;
+  EXPECT_NE(stats.output.find(" of 1.0 MiB, lattice terms "), std::string::npos) << stats.output;
+  EXPECT_NE(stats.output.find(" of 2.0 MiB, SQLite "), std::string::npos) << stats.output;
+  EXPECT_NE(stats.output.find("memory            resident "), std::string::npos) << stats.output;
 }
 
 TEST(MetricsEndpoint, AMetricsPortInUseFailsTheStartWithAClearMessage) {

@@ -202,6 +202,14 @@ struct ServiceMetrics {
   // last look, background vacuum passes.
   int64_t max_cache_bytes = 0, cache_file_bytes = 0;
   uint64_t cache_evictions = 0, cache_evicted_bytes = 0, cache_vacuums = 0;
+  // Memory, in bytes: the process (resident; malloc's in use and kept free,
+  // glibc only) and the caches that hold it, each against its bound.
+  int64_t resident_bytes = 0, heap_allocated_bytes = 0, heap_free_bytes = 0;
+  int64_t resident_anonymous_bytes = 0, resident_file_bytes = 0;  // resident_bytes split
+  std::string allocator;  // "jemalloc 5.3.0-..." or "glibc"
+  int64_t memory_cache_bytes = 0, memory_cache_capacity_bytes = 0;
+  int64_t lattice_terms_bytes = 0, lattice_terms_capacity_bytes = 0;
+  int64_t sqlite_memory_bytes = 0, sqlite_memory_peak_bytes = 0;
 };
 
 struct CacheInfo {
