@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/app_commands.h"
+#include "fuzz/fuzz_args.h"
 
 namespace {
 
@@ -28,26 +29,14 @@ bool AsksForHelpOrVersion(const std::vector<std::string>& args) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  std::vector<std::string> args = {"alignset"};
-  std::string current;
-  for (size_t i = 0; i < size && args.size() < 64; ++i) {
-    if (data[i] == 0) {
-      args.push_back(current);
-      current.clear();
-    } else {
-      current.push_back(static_cast<char>(data[i]));
-    }
-  }
-  if (!current.empty()) args.push_back(current);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  alignset::fuzz::FuzzArgs line("alignset", data, size);
+  const std::vector<std::string>& args = line.args;
 
   CLI::App app;
   alignset::cli::AddEveryCommand(app);
   bool ran = false;
   alignset::cli::ParseOnlyForFuzzing(&ran);
-  const int rc = alignset::cli::RunApp(app, static_cast<int>(args.size()), argv.data());
+  const int rc = alignset::cli::RunApp(app, line.argc(), line.argv.data());
   if (rc != alignset::cli::kExitOk && rc != alignset::cli::kExitUsage) std::abort();
   // Success means a command was chosen (its marker ran) or help/the version
   // was printed; a usage error runs nothing.

@@ -6,27 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "fuzz/fuzz_args.h"
 #include "server/config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  std::vector<std::string> args = {"alignset-server"};
-  std::string current;
-  for (size_t i = 0; i < size && args.size() < 64; ++i) {
-    if (data[i] == 0) {
-      args.push_back(current);
-      current.clear();
-    } else {
-      current.push_back(static_cast<char>(data[i]));
-    }
-  }
-  if (!current.empty()) args.push_back(current);
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  alignset::fuzz::FuzzArgs line("alignset-server", data, size);
+  const std::vector<std::string>& args = line.args;
   // The last argument doubles as every ALIGNSET_* variable's value.
   const std::string env = args.size() > 1 ? args.back() : std::string();
   auto config = alignset::server::ParseServerConfig(
-      static_cast<int>(args.size()), argv.data(),
+      line.argc(), line.argv.data(),
       [&](const char* name) -> const char* { return std::strncmp(name, "ALIGNSET_", 9) == 0 && !env.empty() ? env.c_str() : nullptr; });
   (void)config;
   return 0;
