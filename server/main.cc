@@ -2,11 +2,14 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 #include "server/config.h"
+#include "server/process_memory.h"
 #include "server/server.h"
 #include "storage/profile.h"
 
@@ -18,6 +21,10 @@ extern "C" const char* malloc_conf = "background_thread:true";
 #endif
 
 int main(int argc, char** argv) {
+  // Before any thread: the cap applies to the arenas threads create. One
+  // arena a core (glibc's default is eight), two at least.
+  const std::string allocator_note =
+      alignset::server::LimitAllocatorKeeping(std::max(2, static_cast<int>(std::thread::hardware_concurrency())));
   // --version wins over every other flag, as --help does.
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--version") || !std::strcmp(argv[i], "-V")) {
@@ -43,6 +50,7 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(level);
   spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ %v");
+  if (!allocator_note.empty()) spdlog::info("{}", allocator_note);
 
   // Block the stop signals in every thread (they inherit the mask) and take
   // them synchronously here, so shutdown runs in ordinary code.

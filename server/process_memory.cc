@@ -1,6 +1,7 @@
 #include "server/process_memory.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #if defined(ALIGNSET_WITH_JEMALLOC)
@@ -67,6 +68,35 @@ ProcessMemory ReadProcessMemory() {
   m.allocator = "glibc";
 #endif
   return m;
+}
+
+std::string LimitAllocatorKeeping(int max_arenas) {
+#if !defined(ALIGNSET_WITH_JEMALLOC) && defined(__GLIBC__)
+  if (std::getenv("MALLOC_ARENA_MAX") || std::getenv("GLIBC_TUNABLES")) return "";
+  if (mallopt(M_ARENA_MAX, max_arenas) != 1) return "";
+  return "glibc malloc: at most " + std::to_string(max_arenas) + " arenas";
+#else
+  (void)max_arenas;
+  return "";
+#endif
+}
+
+int MallocArenas() {
+#if !defined(ALIGNSET_WITH_JEMALLOC) && defined(__GLIBC__)
+  char* text = nullptr;
+  size_t size = 0;
+  std::FILE* f = open_memstream(&text, &size);
+  if (!f) return -1;
+  const bool ok = malloc_info(0, f) == 0;
+  std::fclose(f);
+  int arenas = 0;
+  // One <heap nr="..."> element an arena.
+  for (const char* p = text; ok && (p = std::strstr(p, "<heap nr=")) != nullptr; ++p) ++arenas;
+  std::free(text);
+  return ok ? arenas : -1;
+#else
+  return -1;
+#endif
 }
 
 }  // namespace alignset::server

@@ -492,18 +492,22 @@ TEST_F(E2eTest, DeadlineStopsTheWaitAndTheAbandonedOptimizationIsCancelled) {
 }
 
 TEST_F(E2eTest, WatchStreamsProgressThenTheSet) {
-  StartServer({"--max-iterations", "100", "--workers", "1", "--threads-per-worker", "1"});
+  // Long enough to be watched on a fast machine (about 0.9 s here): the
+  // stream looks every 100 ms, and a job that runs from one look to the
+  // next shows only its queue position and then the set (100 iterations at
+  // N = 1024 did, in CI).
+  StartServer({"--max-iterations", "1000", "--workers", "1", "--threads-per-worker", "1"});
   int progress_events = 0;
   int last_iteration = -1;
   bool monotone = true;
-  auto set = Client()->WatchAlignedSet(1024, {33.0}, [&](const WatchUpdate& u) {
+  auto set = Client()->WatchAlignedSet(2048, {33.0}, [&](const WatchUpdate& u) {
     if (u.queued) return;
     ++progress_events;
     monotone = monotone && u.iteration >= last_iteration;
     last_iteration = u.iteration;
   });
   ASSERT_TRUE(set.ok()) << set.status().message();
-  EXPECT_EQ(set->points.size(), 1024u);
+  EXPECT_EQ(set->points.size(), 2048u);
   EXPECT_GT(progress_events, 0);
   EXPECT_TRUE(monotone);
 }
