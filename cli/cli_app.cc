@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/optimize/construction.h"
+#include "core/optimize/point_count.h"
 #include "core/util/number_text.h"
 
 namespace alignset::cli {
@@ -98,6 +99,17 @@ CLI::Validator ConstructionName() {
   std::vector<std::string> names;
   for (const Construction& c : Constructions()) names.emplace_back(c.name);
   return CLI::IsMember(names);
+}
+
+CLI::Validator PointCount() {
+  return CLI::Validator(
+      [](std::string& text) {
+        auto v = ParseInt(text, "", 0, UINT32_MAX);
+        if (!v.ok()) return WithoutSubject(v.status().message());
+        const Status s = ValidatePointCount(static_cast<uint32_t>(*v));
+        return s.ok() ? std::string() : s.message();
+      },
+      "", "point count");
 }
 
 namespace {

@@ -49,6 +49,11 @@ CLI::Validator FiniteIn(double lo, double hi);
 // (server/construction.h): optimized, lattice, tent-lattice, net. One list, so
 // that get, precompute and optimize accept the same names.
 CLI::Validator ConstructionName();
+// A point count N: an integer refused in the words of the one rule for N
+// (core/optimize/point_count.h) that the server, the cache and a table file
+// use too. A construction's own size rule is checked where the construction
+// is known (ValidatePointCount(n, construction)).
+CLI::Validator PointCount();
 
 // A subcommand of `parent`; it inherits the parent's footer (the exit
 // statuses), so set that first.

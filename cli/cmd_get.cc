@@ -286,7 +286,7 @@ void AddGetCommand(CLI::App& app) {
   CLI::App* c = AddCommand(app, "get",
                            "an aligned set from alignset-server (.npy or UTK text by extension)");
   // The server checks N against its own maximum; here only the type.
-  c->add_option("-n,--n", o->n, "number of points")->required()->check(IntegerIn(0, UINT32_MAX));
+  c->add_option("-n,--n", o->n, "number of points")->required()->check(PointCount());
   CLI::Option* dir =
       c->add_option("--dir", o->dirs, "direction in degrees (edge normal), once or twice")
           ->allow_extra_args(false)

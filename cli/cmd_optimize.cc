@@ -358,7 +358,7 @@ void AddOptimizeCommand(CLI::App& app) {
                            "(DEG: spectral direction = edge normal)");
   c->add_option("-n,--n", o->n, "number of points")
       ->required()
-      ->check(IntegerIn(kMinPoints, kMaxPoints));
+      ->check(PointCount());
   c->add_option("--dir", o->dirs,
                 "direction in degrees (edge normal), 1 to 8 times: 3 to 10 low-energy\n"
                 "directions with the axes (more than two: the strips share the budget)")

@@ -111,7 +111,7 @@ void AddPrecomputeCommand(CLI::App& app) {
   c->add_option("-n,--n", o->n, "point counts, comma-separated (e.g. 1024,4096)")
       ->required()
       ->delimiter(',')
-      ->check(IntegerIn(kMinPoints, kMaxPoints));
+      ->check(PointCount());
   c->add_option("--space", o->space,
                 "1dir (the 46 one-direction keys), 2dir (the 4141 pairs) or keys (--key)\n"
                 "(default: keys with --key, else 1dir)")

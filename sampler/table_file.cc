@@ -12,6 +12,7 @@
 
 #include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
+#include "core/optimize/point_count.h"
 #include "core/util/crc32c.h"
 
 namespace alignset::sampler {
@@ -72,10 +73,7 @@ Status CheckSections(const std::vector<TableSection>& sections) {
       return Status::InvalidArgument("unknown space " + std::to_string(static_cast<int>(s.space)));
     }
     const std::string name = SectionName(s.n, s.construction, s.space);
-    if (s.n < kMinPoints || s.n > kMaxPoints) {
-      return Status::InvalidArgument(name + ": N out of range [" + std::to_string(kMinPoints) + ", " +
-                                     std::to_string(kMaxPoints) + "]");
-    }
+    if (Status size = ValidatePointCount(s.n, *c); !size.ok()) return Status::InvalidArgument(name + ": " + size.message());
     if (!seen.insert({s.n, s.construction, static_cast<int>(s.space)}).second) {
       return Status::InvalidArgument(name + " appears twice");
     }
@@ -191,10 +189,7 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
     s.construction = std::string(c->name);
     s.space = static_cast<TableSpace>(e[5]);
     const std::string name = SectionName(s.n, s.construction, s.space);
-    if (s.n < kMinPoints || s.n > kMaxPoints) {
-      return Status::InvalidArgument(name + ": N out of range [" + std::to_string(kMinPoints) + ", " +
-                                     std::to_string(kMaxPoints) + "]");
-    }
+    if (Status size = ValidatePointCount(s.n, *c); !size.ok()) return Status::InvalidArgument(name + ": " + size.message());
     const uint32_t keys = Get32(e + 8);
     if (keys != TableSpaceKeys(s.space)) {
       return Status::InvalidArgument(name + ": " + std::to_string(keys) + " keys where the space has " +

@@ -5,18 +5,15 @@
 #include <string>
 
 #include "core/optimize/optimizer.h"
+#include "core/optimize/point_count.h"
 #include "core/optimize/realization.h"
 
 namespace alignset::server {
 
 Status ValidatePointCount(uint32_t n, uint32_t max_n) {
-  if (n == 0) return Status::InvalidArgument("n is 0 (missing?): ask for at least " + std::to_string(kMinPoints) + " points");
-  if (n < kMinPoints) {
-    return Status::InvalidArgument("n = " + std::to_string(n) + " is below the minimum of " +
-                                   std::to_string(kMinPoints) + " points");
-  }
+  if (Status s = ::alignset::ValidatePointCount(n); !s.ok()) return s;
   if (n > max_n) {
-    return Status::InvalidArgument("n = " + std::to_string(n) + " is above this server's maximum of " +
+    return Status::InvalidArgument("N = " + std::to_string(n) + " is above this server's maximum of " +
                                    std::to_string(max_n) + " points (--max-n)");
   }
   return Status::Ok();

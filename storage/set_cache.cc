@@ -3,14 +3,12 @@
 
 #include <string>
 
+#include "core/optimize/point_count.h"
+
 namespace alignset::storage {
 
 Status ValidateKey(const SetKey& key) {
-  if (key.n < kMinPoints || key.n > kMaxPoints) {
-    return Status::InvalidArgument("n = " + std::to_string(key.n) + " is outside [" +
-                                   std::to_string(kMinPoints) + ", " + std::to_string(kMaxPoints) +
-                                   "]");
-  }
+  if (Status s = ValidatePointCount(key.n); !s.ok()) return s;
   const CanonicalDirections& d = key.dirs;
   if (d.count == 1) {
     if (d.phi1 < 0 || d.phi1 > 45 || d.phi2 != d.phi1) {

@@ -269,7 +269,7 @@ TEST_F(E2eTest, BadRequestsGetInvalidArgumentAndTheServerKeepsServing) {
     return stub->GetAlignedSet(&ctx, req, &resp);
   };
   using C = grpc::StatusCode;
-  ExpectStatus(get(0, {30}), C::INVALID_ARGUMENT, "n is 0");
+  ExpectStatus(get(0, {30}), C::INVALID_ARGUMENT, "N = 0 is below the minimum of 16 points (missing?)");
   ExpectStatus(get(8, {30}), C::INVALID_ARGUMENT, "below the minimum of 16");
   ExpectStatus(get(4097, {30}), C::INVALID_ARGUMENT, "maximum of 4096");
   ExpectStatus(get(64, {std::nan("")}), C::INVALID_ARGUMENT, "not a finite number");

@@ -137,7 +137,7 @@ TEST_F(SetTableTest, AnNOrKeyOutOfRangeIsRefused) {
   std::vector<uint8_t> b = Bytes({*lattice_});
   Put32(&b, 16, 8);  // N = 8 < 16
   Rechecksum(&b);
-  ExpectRefused(b, Status::Code::kInvalidArgument, "N out of range");
+  ExpectRefused(b, Status::Code::kInvalidArgument, "N = 8 is below the minimum of 16 points");
   b = Bytes({*lattice_});
   Put32(&b, 16 + 20 + 4 * 7, 64);  // key 7's generator = N
   Rechecksum(&b);

@@ -23,7 +23,7 @@ void ExpectInvalid(uint32_t n, std::vector<double> dirs, const std::string& frag
 }
 
 TEST(Validation, RefusesEachBadFieldWithAMessageNamingIt) {
-  ExpectInvalid(0, {30}, "n is 0");
+  ExpectInvalid(0, {30}, "N = 0 is below the minimum of 16 points (missing?)");
   ExpectInvalid(15, {30}, "below the minimum");
   ExpectInvalid(4097, {30}, "maximum of 4096");
   ExpectInvalid(64, {}, "one or two directions");
