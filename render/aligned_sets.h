@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include <alignset/pixel_sampler.h>
+#include <alignset/set_choice.h>
 #include <alignset/set_table.h>
 
 #include "render/direction.h"
@@ -14,8 +14,8 @@
 
 namespace alignset::render {
 
-// The set choice is the client library's per-pixel recipe
-// (<alignset/pixel_sampler.h>: AlignedPolicy, SetChoice, ChooseSet); a
+// The set choice is the sampler library's per-pixel recipe
+// (<alignset/set_choice.h>: AlignedPolicy, SetChoice, ChooseSet); a
 // render's direction map is turned into its PixelDirections here.
 inline PixelDirections RecipeDirections(const PixelDirection& d) {
   return {static_cast<int>(d.kind), d.theta1, d.theta2};

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include <alignset/pixel_sampler.h>
+#include <alignset/set_choice.h>
 
 #include "render/aligned_sets.h"
 #include "render/direction.h"

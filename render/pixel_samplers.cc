@@ -4,7 +4,8 @@
 #include <cmath>
 
 #include <alignset/aligned_sampler.h>
-#include <alignset/pixel_sampler.h>
+#include <alignset/pixel_shift.h>
+#include <alignset/set_choice.h>
 
 #include "core/optimize/aligned_lattice.h"
 #include "core/sampling/owen_sobol.h"

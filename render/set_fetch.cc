@@ -7,6 +7,20 @@
 #include "core/optimize/construction.h"
 
 namespace alignset::render {
+namespace {
+
+// The request for a choice's set of N points made by `construction` ("" the
+// server's default); a fallback choice asks for none.
+SetRequest RequestFor(const SetChoice& c, uint32_t n, const std::string& construction) {
+  SetRequest r;
+  r.n = n;
+  r.construction = construction;
+  r.directions_deg = {static_cast<double>(c.a)};
+  if (c.kind == SetChoice::Kind::kTwo) r.directions_deg.push_back(static_cast<double>(c.b));
+  return r;
+}
+
+}  // namespace
 
 StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
                                            const std::set<std::pair<int, int>>& pairs,
@@ -54,11 +68,8 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
   table.one.resize(180);
   table.one_generator.assign(180, 0);
   std::vector<SetRequest> items;
-  // The client library's key -> request mapping (<alignset/pixel_sampler.h>).
-  for (int deg = 0; deg < 180; ++deg) {
-    items.push_back(*RequestFor({SetChoice::Kind::kOne, deg, 0}, n, construction));
-  }
-  for (const auto& [a, b] : pairs) items.push_back(*RequestFor({SetChoice::Kind::kTwo, a, b}, n, construction));
+  for (int deg = 0; deg < 180; ++deg) items.push_back(RequestFor({SetChoice::Kind::kOne, deg, 0}, n, construction));
+  for (const auto& [a, b] : pairs) items.push_back(RequestFor({SetChoice::Kind::kTwo, a, b}, n, construction));
   const std::string stage = "fetch sets N=" + std::to_string(n);
   for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
     const size_t end = std::min(items.size(), begin + kMaxBatchItems);

@@ -43,8 +43,10 @@ StatusOr<AlignedSampler> AlignedSampler::Create(std::shared_ptr<const SetTable> 
     return Status::InvalidArgument("stack_radius must be 0 (auto) or in [1, 4], got " +
                                    std::to_string(options.stack_radius));
   }
-  if (!table->Has(options.n, options.construction, TableSpace::kOneDirection) &&
-      !table->Has(options.n, options.construction, TableSpace::kOneQuarter)) {
+  // The construction's own name (static), not the options' string: the
+  // sections outlive any copy of the options.
+  const SetTable::Sections sections = table->Resolve(options.n, construction->name);
+  if (!sections.one_direction()) {
     std::string have;
     for (uint32_t n : table->PointCounts(options.construction)) have += (have.empty() ? "" : ", ") + std::to_string(n);
     return Status::NotFound("the table has no one-direction " + options.construction + " sets of N = " +
@@ -67,7 +69,11 @@ StatusOr<AlignedSampler> AlignedSampler::Create(std::shared_ptr<const SetTable> 
   auto fit = PrepassFit::Create(fo);
   if (!fit.ok()) return fit.status();
   AlignedSampler s;
+  // A point set's one-direction alignments are made here, once per table,
+  // so that no pixel allocates one.
+  table->AlignOneDirectionSets(sections);
   s.table_ = std::move(table);
+  s.sections_ = sections;
   s.options_ = options;
   s.fit_ = *fit;
   s.weight_ = ::alignset::PrepassWeight(fo.prepass_samples, options.n);
@@ -103,8 +109,7 @@ StatusOr<PixelPlan> AlignedSampler::Plan(uint32_t x, uint32_t y, std::span<const
     return plan;
   }
   ++stats.with_direction;
-  if (plan.choice.kind == SetChoice::Kind::kTwo &&
-      !table_->Has(options_.n, options_.construction, TableSpace::kTwoDirections)) {
+  if (plan.choice.kind == SetChoice::Kind::kTwo && sections_.pairs == nullptr) {
     // A table without two-direction sets: the stronger edge's set
     // (documented; asked before any lookup, so no error is built).
     AlignedPolicy one = policy;
@@ -113,7 +118,7 @@ StatusOr<PixelPlan> AlignedSampler::Plan(uint32_t x, uint32_t y, std::span<const
     plan.pair_fell_back = true;
     ++stats.pair_fell_back;
   }
-  auto set = table_->Find(options_.n, options_.construction, plan.choice);
+  auto set = table_->Find(sections_, plan.choice);
   if (!set.ok()) return set.status();
   if (plan.choice.kind == SetChoice::Kind::kTwo) ++stats.two_directions;
   plan.set = *set;

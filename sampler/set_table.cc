@@ -35,6 +35,13 @@ uint32_t TableSpaceKeys(TableSpace space) {
   return 0;
 }
 
+StatusOr<TableSpace> ParseTableSpace(std::string_view name) {
+  for (TableSpace t : {TableSpace::kOneDirection, TableSpace::kOneQuarter, TableSpace::kTwoDirections}) {
+    if (name == TableSpaceName(t)) return t;
+  }
+  return Status::InvalidArgument("--space: '" + std::string(name) + "' is not 1dir, 1dir-quarter or 2dir");
+}
+
 namespace {
 
 // Where a served direction (or pair) lives in its space, and the element
@@ -94,32 +101,34 @@ class AlignedSets {
 
 }  // namespace
 
-struct SetTable::Impl {
-  std::vector<TableSection> sections;
-  // (N, construction, space) -> the section and, for points, its aligned sets.
-  struct Entry {
-    const TableSection* section = nullptr;
-    const Construction* construction = nullptr;
-    std::unique_ptr<AlignedSets> aligned;
-  };
-  std::map<std::tuple<uint32_t, std::string, int>, Entry> by_key;
+struct SetTable::Section {
+  const TableSection* section = nullptr;
+  const Construction* construction = nullptr;
+  std::unique_ptr<AlignedSets> aligned;  // a point set's alignments, built on first use
 
-  const Entry* Section(uint32_t n, std::string_view construction, TableSpace space) const {
-    auto it = by_key.find({n, std::string(construction), static_cast<int>(space)});
-    return it == by_key.end() ? nullptr : &it->second;
-  }
-
-  TableSet Aligned(const Entry& e, size_t slot, const Served& s) const {
+  TableSet Aligned(size_t slot, const Served& s) const {
     TableSet out;
-    out.n = e.section->n;
-    if (e.construction->lattice()) {
-      out.lattice_generator = MapLatticeGenerator(out.n, e.section->generators[s.index], s.ops.swap, s.ops.invert,
+    out.n = section->n;
+    if (construction->lattice()) {
+      out.lattice_generator = MapLatticeGenerator(out.n, section->generators[s.index], s.ops.swap, s.ops.invert,
                                                   s.ops.invert_y);
-      out.folded = e.construction->folded();
+      out.folded = construction->folded();
     } else {
-      out.points = &e.aligned->Get(slot, e.section->sets[s.index], s.ops);
+      out.points = &aligned->Get(slot, section->sets[s.index], s.ops);
     }
     return out;
+  }
+};
+
+struct SetTable::Impl {
+  std::vector<TableSection> sections;
+  // (N, construction, space) -> the section and, for points, its aligned
+  // sets. The transparent comparator finds a string_view without a copy.
+  std::map<std::tuple<uint32_t, std::string, int>, Section, std::less<>> by_key;
+
+  const Section* Find(uint32_t n, std::string_view construction, TableSpace space) const {
+    auto it = by_key.find(std::make_tuple(n, construction, static_cast<int>(space)));
+    return it == by_key.end() ? nullptr : &it->second;
   }
 };
 
@@ -131,7 +140,7 @@ StatusOr<std::shared_ptr<const SetTable>> SetTable::FromSections(std::vector<Tab
   auto impl = std::make_unique<Impl>();
   impl->sections = std::move(sections);
   for (const TableSection& s : impl->sections) {
-    Impl::Entry e;
+    Section e;
     e.section = &s;
     e.construction = FindConstruction(s.construction);
     if (!e.construction->lattice()) {
@@ -203,27 +212,50 @@ std::vector<uint32_t> SetTable::PointCounts(std::string_view construction) const
 }
 
 bool SetTable::Has(uint32_t n, std::string_view construction, TableSpace space) const {
-  return impl_->Section(n, construction, space) != nullptr;
+  return impl_->Find(n, construction, space) != nullptr;
+}
+
+SetTable::Sections SetTable::Resolve(uint32_t n, std::string_view construction) const {
+  Sections s;
+  s.n = n;
+  s.construction = construction;
+  s.whole = impl_->Find(n, construction, TableSpace::kOneDirection);
+  s.quarter = impl_->Find(n, construction, TableSpace::kOneQuarter);
+  s.pairs = impl_->Find(n, construction, TableSpace::kTwoDirections);
+  return s;
+}
+
+void SetTable::AlignOneDirectionSets(const Sections& sections) const {
+  if (sections.whole != nullptr && sections.whole->aligned) {
+    for (int deg = 0; deg < 180; ++deg) sections.whole->Aligned(deg, ServedOne(AngleGrid::kWholeDegree)[deg]);
+  }
+  if (sections.quarter != nullptr && sections.quarter->aligned) {
+    for (int q = 0; q < 720; ++q) sections.quarter->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+  }
 }
 
 StatusOr<TableSet> SetTable::Find(uint32_t n, std::string_view construction, const SetChoice& choice) const {
+  return Find(Resolve(n, construction), choice);
+}
+
+StatusOr<TableSet> SetTable::Find(const Sections& sections, const SetChoice& choice) const {
   auto missing = [&](TableSpace space) {
-    return Status::NotFound("the table has no " + std::string(construction) + " sets of N = " + std::to_string(n) +
-                            " for " + TableSpaceName(space) + " (export them: alignset export --n " +
-                            std::to_string(n) + " --construction " + std::string(construction) + ")");
+    const std::string n = std::to_string(sections.n), c(sections.construction);
+    return Status::NotFound("the table has no " + c + " sets of N = " + n + " for " + TableSpaceName(space) +
+                            " (export them: alignset export --n " + n + " --construction " + c + ")");
   };
   switch (choice.kind) {
     case SetChoice::Kind::kFallback:
       return Status::InvalidArgument("a fallback choice reads no set");
     case SetChoice::Kind::kOne: {
       if (choice.a < 0 || choice.a >= 180) return Status::InvalidArgument("served degree out of [0, 180)");
-      if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneDirection)) {
-        return impl_->Aligned(*e, static_cast<size_t>(choice.a), ServedOne(AngleGrid::kWholeDegree)[choice.a]);
+      if (sections.whole != nullptr) {
+        return sections.whole->Aligned(static_cast<size_t>(choice.a), ServedOne(AngleGrid::kWholeDegree)[choice.a]);
       }
       // A quarter-degree section holds every whole degree too.
-      if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneQuarter)) {
+      if (sections.quarter != nullptr) {
         const size_t q = static_cast<size_t>(choice.a) * 4;
-        return impl_->Aligned(*e, q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+        return sections.quarter->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
       }
       return missing(TableSpace::kOneDirection);
     }
@@ -231,10 +263,9 @@ StatusOr<TableSet> SetTable::Find(uint32_t n, std::string_view construction, con
       if (choice.a < 0 || choice.b >= 180 || choice.a >= choice.b) {
         return Status::InvalidArgument("served pair out of range (0 <= a < b < 180)");
       }
-      const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kTwoDirections);
-      if (e == nullptr) return missing(TableSpace::kTwoDirections);
+      if (sections.pairs == nullptr) return missing(TableSpace::kTwoDirections);
       const size_t slot = static_cast<size_t>(choice.a) * 180 + static_cast<size_t>(choice.b);
-      return impl_->Aligned(*e, slot, ServedTwo()[slot]);
+      return sections.pairs->Aligned(slot, ServedTwo()[slot]);
     }
   }
   return Status::InvalidArgument("unknown choice");
@@ -242,11 +273,11 @@ StatusOr<TableSet> SetTable::Find(uint32_t n, std::string_view construction, con
 
 StatusOr<TableSet> SetTable::FindOne(uint32_t n, std::string_view construction, double theta_deg) const {
   if (!std::isfinite(theta_deg)) return Status::InvalidArgument("direction is not a finite number");
-  if (const Impl::Entry* e = impl_->Section(n, construction, TableSpace::kOneQuarter)) {
+  if (const Section* e = impl_->Find(n, construction, TableSpace::kOneQuarter)) {
     double t = std::fmod(theta_deg, 180.0);
     if (t < 0) t += 180.0;
     const size_t q = static_cast<size_t>(std::llround(t * 4.0)) % 720;
-    return impl_->Aligned(*e, q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+    return e->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
   }
   return Find(n, construction, {SetChoice::Kind::kOne, ServedDegree(theta_deg), 0});
 }

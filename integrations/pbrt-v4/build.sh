@@ -33,7 +33,8 @@ OUT="$(cd "$OUT" && pwd)"
 # 1. alignset's sampler library, installed where pbrt's build finds it.
 cmake --build "$BUILD_DIR" -j "$JOBS" --target alignset_sampler > "$OUT/alignset-build.log" 2>&1 \
   || { tail -30 "$OUT/alignset-build.log"; fail "building alignset's sampler library failed"; }
-cmake --install "$BUILD_DIR" --prefix "$OUT/alignset" > "$OUT/alignset-install.log" 2>&1 \
+rm -rf "$OUT/alignset"
+cmake --install "$BUILD_DIR" --prefix "$OUT/alignset" --component sampler > "$OUT/alignset-install.log" 2>&1 \
   || { tail -30 "$OUT/alignset-install.log"; fail "installing alignset failed (build everything: scripts/build.sh)"; }
 
 # 2. The stamp: pbrt's sources, what of the integration goes into the build, the

@@ -4,9 +4,11 @@
 #include <alignset/client.h>
 #include <alignset/lattice_points.h>
 #include <alignset/npy.h>
-#include <alignset/pixel_sampler.h>
+#include <alignset/aligned_sampler.h>
+#include <alignset/set_choice.h>
 #include <alignset/pixel_shift.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
@@ -67,21 +69,41 @@ int main(int argc, char** argv) {
   if (!InUnitSquare(shifted) || alignset::PixelShift(7, 3, 4) == alignset::PixelShift(7, 4, 3)) {
     return Fail("PixelShift / ShiftPoint misbehave");
   }
-  // A served tent-lattice, asked for through the recipe, tells its
-  // generator, and a pixel's own shift goes before the fold
-  // (<alignset/lattice_points.h>, PixelPoints of <alignset/pixel_sampler.h>).
-  const auto tent_request =
-      alignset::RequestFor({alignset::SetChoice::Kind::kOne, 120, 0}, 64, "tent-lattice");
-  auto tent = (*client)->GetAlignedSet(*tent_request, call);
+  // A served tent-lattice tells its generator, and a pixel's own shift goes
+  // before the fold: the sampler library's points for it
+  // (<alignset/lattice_points.h>, SetPixelPoints of <alignset/aligned_sampler.h>).
+  alignset::SetRequest tent_request;
+  tent_request.n = 64;
+  tent_request.directions_deg = {120.0};
+  tent_request.construction = "tent-lattice";
+  auto tent = (*client)->GetAlignedSet(tent_request, call);
   if (!tent.ok()) return Fail("GetAlignedSet tent-lattice: " + tent.status().ToString());
   const uint32_t g = tent->info.lattice_generator;
   const alignset::PointSet own =
       alignset::ShiftedLatticePoints(64, g, alignset::PixelShift(7, 3, 4), true);
-  if (g == 0 || std::gcd(g, 64u) != 1 || own.size() != 64 || !InUnitSquare(own) ||
-      alignset::PixelPoints(*tent, alignset::PixelShift(7, 3, 4)) != own) {
-    return Fail("tent-lattice generator / ShiftedLatticePoints / PixelPoints misbehave");
+  // The sampler library's pixel points of the same lattice: another shift of
+  // it (realization 0's, then the pixel's), so unfolded they differ from
+  // ShiftedLatticePoints' by one constant torus shift.
+  alignset::TableSet served;
+  served.n = tent->info.n;
+  served.lattice_generator = g;
+  alignset::PointSet library(64), folded(64);
+  alignset::SetPixelPoints(served, alignset::PixelShift(7, 3, 4), library);
+  served.folded = true;
+  alignset::SetPixelPoints(served, alignset::PixelShift(7, 3, 4), folded);
+  const alignset::PointSet unfolded = alignset::ShiftedLatticePoints(64, g, alignset::PixelShift(7, 3, 4), false);
+  auto wrap = [](double d) { return d - std::floor(d); };
+  bool one_shift = true;
+  for (size_t i = 0; i < 64; ++i) {
+    const double dx = wrap(library[i].x - unfolded[i].x - (library[0].x - unfolded[0].x) + 0.5) - 0.5;
+    const double dy = wrap(library[i].y - unfolded[i].y - (library[0].y - unfolded[0].y) + 0.5) - 0.5;
+    one_shift = one_shift && std::fabs(dx) < 1e-9 && std::fabs(dy) < 1e-9;
   }
-  // The set choice of the recipe (<alignset/pixel_sampler.h>): 150.4 deg
+  if (g == 0 || std::gcd(g, 64u) != 1 || own.size() != 64 || !InUnitSquare(own) || !InUnitSquare(folded) ||
+      !one_shift) {
+    return Fail("tent-lattice generator / ShiftedLatticePoints / SetPixelPoints misbehave");
+  }
+  // The set choice of the recipe (<alignset/set_choice.h>): 150.4 deg
   // and 29.6 deg are served as 150 and 30, a pair of non-axis directions; its
   // request is answered with that pair.
   const alignset::SetChoice two =
@@ -89,11 +111,13 @@ int main(int argc, char** argv) {
   const alignset::SetChoice axis = alignset::ChooseSet({2, 40.0, 90.2}, alignset::AlignedPolicy{});
   if (two.kind != alignset::SetChoice::Kind::kTwo || two.a != 30 || two.b != 150 ||
       axis.kind != alignset::SetChoice::Kind::kOne || axis.a != 40 ||
-      alignset::RequestFor(alignset::SetChoice{}, 64).has_value() ||
       alignset::ServedDegree(179.5) != 0 || alignset::AxialDistanceDeg(10.0, 170.0) != 20.0) {
-    return Fail("ChooseSet / RequestFor / ServedDegree misbehave");
+    return Fail("ChooseSet / ServedDegree misbehave");
   }
-  auto pair = (*client)->GetAlignedSet(*alignset::RequestFor(two, 64), call);
+  alignset::SetRequest pair_request;
+  pair_request.n = 64;
+  pair_request.directions_deg = {static_cast<double>(two.a), static_cast<double>(two.b)};
+  auto pair = (*client)->GetAlignedSet(pair_request, call);
   if (!pair.ok() || pair->info.served_deg.size() != 2) {
     return Fail("GetAlignedSet for a recipe's pair: " +
                 (pair.ok() ? std::string("wrong directions") : pair.status().ToString()));

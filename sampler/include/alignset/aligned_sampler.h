@@ -177,6 +177,9 @@ class AlignedSampler {
 
  private:
   std::shared_ptr<const SetTable> table_;
+  // The table's sections of (n, construction), resolved at Create: a pixel's
+  // lookup builds no key.
+  SetTable::Sections sections_;
   AlignedSamplerOptions options_;
   PrepassFit fit_;
   double weight_ = 0.0;

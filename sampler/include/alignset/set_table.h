@@ -43,6 +43,8 @@ enum class TableSpace : uint8_t {
 const char* TableSpaceName(TableSpace space);
 // 46, 181 or 4141.
 uint32_t TableSpaceKeys(TableSpace space);
+// The space a name above names; INVALID_ARGUMENT naming the three otherwise.
+StatusOr<TableSpace> ParseTableSpace(std::string_view name);
 
 // One section: a space's keys for one N and one construction, in the
 // canonical key order (core/align's CanonicalKeyAt: ascending angle).
@@ -69,6 +71,21 @@ struct TableSet {
 
 class SetTable {
  public:
+  // One section of a table with its lookup state (opaque).
+  struct Section;
+  // An (N, construction)'s sections, resolved once (AlignedSampler::Create
+  // does): a lookup through them builds no key and allocates nothing. Each
+  // null where the table has no such section; `n` and `construction` name
+  // them in the lookup's errors (construction must outlive the handle).
+  struct Sections {
+    uint32_t n = 0;
+    std::string_view construction;
+    const Section* whole = nullptr;    // TableSpace::kOneDirection
+    const Section* quarter = nullptr;  // TableSpace::kOneQuarter
+    const Section* pairs = nullptr;    // TableSpace::kTwoDirections
+    bool one_direction() const { return whole != nullptr || quarter != nullptr; }
+  };
+
   // The file format this library reads and writes.
   static constexpr uint32_t kFormatVersion = 1;
 
@@ -89,12 +106,22 @@ class SetTable {
   std::vector<uint32_t> PointCounts(std::string_view construction) const;
   bool Has(uint32_t n, std::string_view construction, TableSpace space) const;
 
+  Sections Resolve(uint32_t n, std::string_view construction) const;
+  // Aligns every one-direction set of `sections` that a lookup would align on
+  // first use (a point set's 180 whole-degree or 720 quarter-degree
+  // alignments; lattices need none), so that no pixel's lookup allocates.
+  // Pairs of point sets stay aligned on first use (32,400 of them).
+  void AlignOneDirectionSets(const Sections& sections) const;
+
   // The set a pixel's choice reads, aligned. NOT_FOUND naming what is
   // missing when the table has no section for it (a two-direction choice
   // from a table without two-direction keys is the caller's fallback to
   // decide: AlignedSampler takes the stronger direction's set), and
   // INVALID_ARGUMENT for a choice out of range.
   StatusOr<TableSet> Find(uint32_t n, std::string_view construction, const SetChoice& choice) const;
+  // The same through resolved sections (no key built, no allocation once
+  // the sets are aligned).
+  StatusOr<TableSet> Find(const Sections& sections, const SetChoice& choice) const;
   // One direction served on the quarter-degree grid (a kOneQuarter section),
   // or to the nearest whole degree when the table has only whole degrees.
   StatusOr<TableSet> FindOne(uint32_t n, std::string_view construction, double theta_deg) const;
