@@ -36,6 +36,7 @@ void AddEveryCommand(CLI::App& app) {
   AddAnalyzeCommand(app);
   AddConvergenceCommand(app);
   AddDirectionCommand(app);
+  AddTableCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
   AddExportCommand(app);

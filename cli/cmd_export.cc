@@ -11,10 +11,12 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/table_summary.h"
 #include "core/align/canonical.h"
 #include "core/optimize/aligned_lattice.h"
 #include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
+#include "core/optimize/point_count.h"
 #include "storage/paths.h"
 #include "storage/set_cache.h"
 
@@ -30,13 +32,6 @@ struct ExportOptions {
   uint64_t seed = 1;    // the server's --seed, for that default profile
   std::string out;
 };
-
-StatusOr<TableSpace> ParseSpace(const std::string& s) {
-  for (TableSpace t : {TableSpace::kOneDirection, TableSpace::kOneQuarter, TableSpace::kTwoDirections}) {
-    if (s == TableSpaceName(t)) return t;
-  }
-  return Status::InvalidArgument("--space: '" + s + "' is not 1dir, 1dir-quarter or 2dir");
-}
 
 // One section from the cache: realization 0 of every key of the space.
 StatusOr<TableSection> ReadSection(storage::SetCache& cache, const ExportOptions& o, uint32_t n,
@@ -101,7 +96,7 @@ int RunExport(const ExportOptions& in) {
   }
   std::vector<TableSpace> spaces;
   for (const std::string& s : o.spaces) {
-    auto space = ParseSpace(s);
+    auto space = ParseTableSpace(s);
     if (!space.ok()) return ReportError("export", space.status(), kExitUsage);
     spaces.push_back(*space);
   }
@@ -115,7 +110,7 @@ int RunExport(const ExportOptions& in) {
   for (uint32_t n : o.n) {
     for (const std::string& name : o.constructions) {
       const Construction& c = *FindConstruction(name);
-      if (Status size = c.ValidateSize(n); !size.ok()) return ReportError("export", size, kExitUsage);
+      if (Status size = ValidatePointCount(n, c); !size.ok()) return ReportError("export", size, kExitUsage);
       for (TableSpace space : spaces) {
         auto s = ReadSection(**cache, o, n, c, space);
         if (!s.ok()) return ReportError("export", s.status(), kExitFailure);
@@ -129,14 +124,7 @@ int RunExport(const ExportOptions& in) {
   auto table = SetTable::FromSections(std::move(sections));
   if (!table.ok()) return ReportError("export", table.status(), kExitFailure);
   if (Status saved = (*table)->Save(o.out); !saved.ok()) return ReportError("export", saved, kExitFailure);
-  std::printf("sections       %zu\n", (*table)->sections().size());
-  for (const TableSection& s : (*table)->sections()) {
-    std::printf("  N=%-6u %-13s %-13s %u keys\n", s.n, s.construction.c_str(), TableSpaceName(s.space),
-                TableSpaceKeys(s.space));
-  }
-  std::printf("bytes          %llu\n", static_cast<unsigned long long>(std::filesystem::file_size(o.out)));
-  std::printf("format         version %u, crc32c\n", SetTable::kFormatVersion);
-  std::printf("wrote          %s\n", o.out.c_str());
+  PrintTableSummary(**table, o.out);
   return kExitOk;
 }
 
@@ -152,7 +140,7 @@ void AddExportCommand(CLI::App& app) {
   c->add_option("-n,--n", o->n, "point counts, comma-separated (e.g. 256,1024)")
       ->required()
       ->delimiter(',')
-      ->check(IntegerIn(kMinPoints, kMaxPoints));
+      ->check(PointCount());
   c->add_option("--construction", o->constructions,
                 "constructions, comma-separated: lattice (default), tent-lattice, optimized, net,\n"
                 "lattice-sequence (stored as points: export the largest N a pixel may reach)")

@@ -18,6 +18,8 @@ void AddAnalyzeCommand(CLI::App& app);
 void AddConvergenceCommand(CLI::App& app);
 // The principal direction of an integrand patch (core/analysis).
 void AddDirectionCommand(CLI::App& app);
+// The table file of lattices, searched here without a server (cli/cmd_table.cc).
+void AddTableCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
 // export / import / merge / verify / list of SQLite cache files.
 void AddCacheCommand(CLI::App& app);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <string>
 #include <vector>
 
 #include "tests/sampler/table_fixture.h"
@@ -76,10 +77,23 @@ uint64_t Frame(const AlignedSampler& s, bool shared, AlignedSampler::Scratch& sc
   return g_allocations.load() - before;
 }
 
+// The table a construction's sampler reads: lattices as generators, the
+// lattice sequence and the optimized sets as points (each its own section:
+// the lookup is by construction).
+TableSection SectionOf(const std::string& construction, TableSpace space) {
+  if (construction == "lattice" || construction == "tent-lattice") {
+    return testing::LatticeSection(256, space, construction == "tent-lattice");
+  }
+  TableSection s = testing::PointsSection(256, space);
+  s.construction = construction;
+  return s;
+}
+
 // A first frame grows the thread's buffers; the frames after it (other
 // seeds: other points, other crossings) allocate nothing.
-void ExpectNoAllocationsAfterWarmUp(AlignedSamplerOptions o, bool shared) {
-  auto table = SetTable::FromSections({testing::LatticeSection(256, TableSpace::kOneDirection)});
+void ExpectNoAllocationsAfterWarmUp(AlignedSamplerOptions o, bool shared,
+                                    TableSpace space = TableSpace::kOneDirection) {
+  auto table = SetTable::FromSections({SectionOf(o.construction, space)});
   ASSERT_TRUE(table.ok());
   AlignedSampler::Scratch scratch;
   o.seed = 1;
@@ -99,6 +113,44 @@ TEST(SamplerHotPath, NoAllocationPerPixelOnFootprints) {
   o.n = 256;
   o.image_width = 14;
   ExpectNoAllocationsAfterWarmUp(o, false);
+}
+
+// Every construction a table can hold, each a table of its own: the section
+// is resolved at Create and a point set's alignments made there, so its
+// first frame's pixels allocate no more than a lattice's (the scratch) and
+// the later frames nothing. Nets are stored as points like the optimized
+// sets, so the points path covers them.
+TEST(SamplerHotPath, NoAllocationPerPixelForEveryConstruction) {
+  for (const char* c : {"lattice", "tent-lattice", "lattice-sequence", "optimized", "net"}) {
+    for (TableSpace space : {TableSpace::kOneDirection, TableSpace::kOneQuarter}) {
+      SCOPED_TRACE(std::string(c) + " " + TableSpaceName(space));
+      AlignedSamplerOptions o;
+      o.n = 256;
+      o.image_width = 14;
+      o.construction = c;
+      ExpectNoAllocationsAfterWarmUp(o, false, space);
+    }
+  }
+}
+
+// The first frame of a point set's sampler allocates what a lattice's does:
+// nothing per set, however many directions its pixels read.
+TEST(SamplerHotPath, APointSetsFirstFrameAllocatesNoMoreThanALatticesDoes) {
+  auto first_frame = [](const std::string& construction) {
+    auto table = SetTable::FromSections({SectionOf(construction, TableSpace::kOneDirection)});
+    EXPECT_TRUE(table.ok());
+    AlignedSamplerOptions o;
+    o.n = 256;
+    o.image_width = 14;
+    o.construction = construction;
+    auto s = AlignedSampler::Create(*table, o);
+    EXPECT_TRUE(s.ok());
+    AlignedSampler::Scratch scratch;
+    return Frame(*s, false, scratch);
+  };
+  const uint64_t lattice = first_frame("lattice");
+  EXPECT_EQ(first_frame("lattice-sequence"), lattice);
+  EXPECT_EQ(first_frame("optimized"), lattice);
 }
 
 TEST(SamplerHotPath, NoAllocationPerPixelOnASharedDomain) {
