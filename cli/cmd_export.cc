@@ -42,10 +42,8 @@ StatusOr<TableSection> ReadSection(storage::SetCache& cache, const ExportOptions
   s.space = space;
   const int count = space == TableSpace::kTwoDirections ? 2 : 1;
   const AngleGrid grid = space == TableSpace::kOneQuarter ? AngleGrid::kQuarterDegree : AngleGrid::kWholeDegree;
-  const std::string profile = !c.optimized() ? std::string(c.profile)
-                              : !o.profile.empty()
-                                  ? o.profile
-                                  : storage::ProfileId(DefaultFrequencyParams(n), OptimizerOptions{}, o.seed);
+  const std::string profile = c.optimized() && !o.profile.empty() ? o.profile
+                                                                 : storage::KeyProfile(n, c, OptimizerOptions{}, o.seed);
   const size_t keys = CanonicalKeyCount(count, grid);
   size_t missing = 0;
   std::string first_missing;

@@ -132,27 +132,16 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   if (options.max_queue_per_client < 1) return Status::InvalidArgument("max_queue_per_client must be at least 1");
   if (options.max_paused < 0) return Status::InvalidArgument("max_paused must be at least 0");
   if (options.time_slice.count() < 0) return Status::InvalidArgument("time_slice must be at least 0");
-  if (Status s = ValidateOptions(options.optimizer); !s.ok()) return s;
+  if (Status s = ValidateOptions(options.producer.optimizer); !s.ok()) return s;
   Options o = options;
   // A progress callback every iteration: it is where a job yields its worker
   // (fairness) and notices that its waiters left. It costs one uncontended
   // lock per iteration and does not change the set (progress_every is not
   // part of the profile).
-  o.optimizer.progress_every = 1;
-  if (o.read_only) o.max_cache_bytes = 0;
+  o.producer.optimizer.progress_every = 1;
+  if (o.producer.read_only) o.producer.max_cache_bytes = 0;
   std::unique_ptr<Scheduler> s(new Scheduler(o, metrics));
-  SetProducer::Options po;
-  po.optimizer = o.optimizer;
-  po.seed = o.seed;
-  po.threads_per_worker = o.threads_per_worker;
-  po.memory_cache_bytes = o.memory_cache_bytes;
-  po.lattice_terms_bytes = o.lattice_terms_bytes;
-  po.on_write_error = o.on_write_error;
-  po.read_only = o.read_only;
-  po.fill = o.fill;
-  po.max_cache_bytes = o.max_cache_bytes;
-  po.eviction_order_file = o.eviction_order_file;
-  // A key is pinned while its job is in flight, its write included.
+  SetProducer::Options po = o.producer;
   po.pinned = [p = s.get()](const std::string& name) { return p->InFlight(name); };
   auto producer = SetProducer::Create(po, cache, metrics);
   if (!producer.ok()) return producer.status();
@@ -160,7 +149,7 @@ StatusOr<std::unique_ptr<Scheduler>> Scheduler::Create(const Options& options,
   for (int i = 0; i < options.workers; ++i) {
     auto engine = options.engine_factory
                       ? options.engine_factory()
-                      : MakeSpectralEngine(options.engine, options.threads_per_worker);
+                      : MakeSpectralEngine(options.engine, options.producer.threads_per_worker);
     if (!engine.ok()) return engine.status();
     s->engines_.push_back(std::move(engine).value());
   }
@@ -300,7 +289,7 @@ StatusOr<std::unique_ptr<Ticket>> Scheduler::Acquire(const storage::SetKey& key,
     spdlog::error("cache read {}: {}", name, stored.status().message());
     return Status::Unavailable("cache read failed: " + stored.status().message());
   }
-  if (options_.read_only && !options_.fill) {
+  if (options_.producer.read_only && !options_.producer.fill) {
     const uint64_t n = metrics_->replica_misses.fetch_add(1, std::memory_order_relaxed) + 1;
     if (LogThisOne(n)) spdlog::info("read-only replica: no set {} ({} misses so far)", name, n);
     return Status::NotFound("read-only replica: " + name +
@@ -472,7 +461,7 @@ Scheduler::SliceEnd Scheduler::RunSlice(const std::shared_ptr<Job>& job, Spectra
     job->from_cache = true;
     return SliceEnd::kDone;
   }
-  if (options_.fill) {
+  if (options_.producer.fill) {
     // The call to the writer is cancelled when every waiter has left (or
     // the server stops), as an optimization notices at its next slice.
     auto filled = producer_->Fill(job->name, job->key, [this, job] {

@@ -132,34 +132,16 @@ class Scheduler {
  public:
   struct Options {
     int workers = 1;
-    int threads_per_worker = 0;
     EngineKind engine = EngineKind::kAuto;
     int max_queue = 256;
     int max_queue_per_client = 64;
     std::chrono::milliseconds time_slice{500};
     int max_paused = 16;
-    OptimizerOptions optimizer;
-    uint64_t seed = 1;
-    size_t memory_cache_bytes = size_t{512} << 20;
-    // The lattice search's terms kept between lattice keys (LatticeTermCache):
-    // the 4141 pairs of a space at N = 4096 in about a minute instead of
-    // nine, and a key's other realizations in milliseconds.
-    size_t lattice_terms_bytes = size_t{128} << 20;
-    // Called (from a worker) when a finished set could not be written.
-    std::function<void(const Status&)> on_write_error;
-    // A read-only replica: nothing is written. A miss is NOT_FOUND naming
-    // the key, unless `fill` is set: then the key's job asks it (the
-    // writer, --fill-from) instead of optimizing, and keeps the answer in
-    // memory only.
-    bool read_only = false;
-    // `fill(key, cancelled)`: cancelled() turns true when every caller of
-    // the key has left (server/fill_client.h).
-    std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const std::function<bool()>&)> fill;
-    // > 0: the cache file's bound (CacheEvictor); writers only.
-    int64_t max_cache_bytes = 0;
-    // With max_cache_bytes: where the eviction order is kept between starts
-    // (the cache file's path + ".served"; empty: not kept).
-    std::string eviction_order_file;
+    // Where sets come from and go (the optimizer, the seed, the memory and
+    // lattice-term bounds, a replica's fill, the file's bound): the
+    // producer's own options, handed to it whole. Its threads_per_worker is
+    // each worker engine's too. Its `pinned` is the scheduler's to set.
+    SetProducer::Options producer;
     // Makes each worker's engine; unset: MakeSpectralEngine(engine,
     // threads_per_worker). Tests put an engine here that they can hold.
     std::function<StatusOr<std::unique_ptr<SpectralEngine>>()> engine_factory;
@@ -171,17 +153,10 @@ class Scheduler {
                                                      storage::SetCache* cache, Metrics* metrics);
   ~Scheduler();
 
-  // The key of N points with canonical directions `dirs` under this server's
-  // optimization profile; `realization` picks one of the key's independent
-  // sets (optimized from RealizationSeed(seed, realization)). A constructed
-  // key has its construction's profile instead (core/optimize/construction.h).
-  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs, uint32_t realization = 0,
-                         ConstructionKind construction = ConstructionKind::kOptimized) const {
-    return producer_->KeyFor(n, dirs, realization, construction);
-  }
-  std::string ProfileFor(uint32_t n, ConstructionKind construction = ConstructionKind::kOptimized) const {
-    return producer_->ProfileFor(n, construction);
-  }
+  // Keys, profiles, what is stored and the memory in use are the producer's
+  // (server/set_producer.h): the scheduler only decides when a key's set is
+  // made.
+  SetProducer& producer() const { return *producer_; }
   const Options& options() const { return options_; }
 
   // A hit (memory, then SQLite), else a share in the key's job, queued if new
@@ -189,18 +164,6 @@ class Scheduler {
   // treated as a miss.
   StatusOr<std::unique_ptr<Ticket>> Acquire(const storage::SetKey& key, Priority priority,
                                             const std::string& client = "");
-  // Whether the set is stored (checksum verified): precompute's skip test.
-  StatusOr<bool> IsStored(const storage::SetKey& key) { return producer_->IsStored(key); }
-  // The key whose set a job for `key` continues from (its parent in the key
-  // lineage, core/align/key_lineage.h), or nullopt where the job starts
-  // from Owen-Sobol: a root, a lattice or net key, N below --warm-min-n or
-  // a warm budget of 0. A batch holds a key back while this one is still
-  // running in it, so that two workers never optimize one ancestor twice,
-  // and starts the keys without one (the roots) of each N first.
-  std::optional<storage::SetKey> LineageParentKey(const storage::SetKey& key) const {
-    return producer_->LineageParentKey(key);
-  }
-
   // Stops taking work: queued jobs end with UNAVAILABLE, running ones are
   // asked to stop at their next progress callback. A write in progress
   // finishes. Returns at once.
@@ -213,7 +176,6 @@ class Scheduler {
   uint32_t queue_length() const;
   uint32_t running() const;
   uint32_t paused() const;
-  SetProducer::MemoryUse memory() const { return producer_->memory(); }
   // Calls `until(queue_length, running, paused)` now and at every change of
   // the three, in the thread that changes them and under the scheduler's
   // lock (so it sees every value they pass through, and must be quick and

@@ -133,29 +133,29 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
   Scheduler::Options so;
   so.workers = config.workers;
   const unsigned cores = std::thread::hardware_concurrency();
-  so.threads_per_worker = ThreadsPerWorker(config.workers, config.threads_per_worker, cores);
-  if (cores > 0 && config.workers * so.threads_per_worker > static_cast<int>(cores)) {
+  so.producer.threads_per_worker = ThreadsPerWorker(config.workers, config.threads_per_worker, cores);
+  if (cores > 0 && config.workers * so.producer.threads_per_worker > static_cast<int>(cores)) {
     spdlog::warn("{} worker(s) x {} thread(s) oversubscribe the {} cores: optimizations will slow "
                  "each other down",
-                 config.workers, so.threads_per_worker, cores);
+                 config.workers, so.producer.threads_per_worker, cores);
   }
   so.engine = config.engine;
   so.max_queue = config.max_queue;
   so.max_queue_per_client = config.max_queue_per_client;
   so.time_slice = std::chrono::milliseconds(config.time_slice_ms);
   so.max_paused = config.max_paused;
-  so.optimizer.max_iterations = config.max_iterations;
-  so.optimizer.warm_budget_fraction = config.warm_budget;
-  so.optimizer.warm_min_points = static_cast<uint32_t>(config.warm_min_n);
-  so.seed = config.seed;
-  so.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
-  so.lattice_terms_bytes = static_cast<size_t>(config.lattice_terms_mb) << 20;
+  so.producer.optimizer.max_iterations = config.max_iterations;
+  so.producer.optimizer.warm_budget_fraction = config.warm_budget;
+  so.producer.optimizer.warm_min_points = static_cast<uint32_t>(config.warm_min_n);
+  so.producer.seed = config.seed;
+  so.producer.memory_cache_bytes = static_cast<size_t>(config.memory_cache_mb) << 20;
+  so.producer.lattice_terms_bytes = static_cast<size_t>(config.lattice_terms_mb) << 20;
   impl->integrity = std::make_unique<IntegrityWatch>(impl->db_path, &impl->metrics);
-  so.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
+  so.producer.on_write_error = [w = impl->integrity.get()](const Status& s) { w->OnWriteError(s); };
   // A replica's shipped file was checked where it was made (`alignset cache
   // verify`); an immutable file cannot change under the server.
   if (config.quick_check && !config.read_only) impl->integrity->CheckInBackground("at start");
-  so.read_only = config.read_only;
+  so.producer.read_only = config.read_only;
   if (!config.fill_from.empty()) {
     std::string ca;
     if (!config.fill_tls_ca.empty()) {
@@ -165,11 +165,11 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
       if (!in || pem.str().empty()) return Status::InvalidArgument("cannot read --fill-tls-ca " + config.fill_tls_ca);
       ca = pem.str();
     }
-    so.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds, ca, config.fill_tls_name);
+    so.producer.fill = MakeWriterFill(config.fill_from, token, config.fill_timeout_seconds, ca, config.fill_tls_name);
   }
-  so.max_cache_bytes = config.max_cache_bytes;
+  so.producer.max_cache_bytes = config.max_cache_bytes;
   // Beside the file it orders (a replica never evicts).
-  if (config.max_cache_bytes > 0 && !config.read_only) so.eviction_order_file = impl->db_path + ".served";
+  if (config.max_cache_bytes > 0 && !config.read_only) so.producer.eviction_order_file = impl->db_path + ".served";
   auto scheduler = Scheduler::Create(so, impl->cache.get(), &impl->metrics);
   if (!scheduler.ok()) return scheduler.status();
   impl->scheduler = std::move(scheduler).value();
@@ -248,7 +248,7 @@ StatusOr<std::unique_ptr<ServerInstance>> ServerInstance::Start(const ServerConf
                                        ? " (bounded to " + std::to_string(config.max_cache_bytes) + " bytes)"
                                        : std::string()),
                config.workers,
-               so.threads_per_worker,
+               so.producer.threads_per_worker,
                EngineKindName(config.engine), config.max_n, config.max_iterations,
                config.tls_cert.empty() ? "" : ", TLS", token.empty() ? "" : ", bearer token");
   return std::unique_ptr<ServerInstance>(new ServerInstance(std::move(impl)));

@@ -119,7 +119,7 @@ StatusOr<storage::SetKey> AlignSetService::KeyOf(const v1::AlignedSetRequest& re
   auto construction = ParseConstruction(req.construction());
   if (!construction.ok()) return construction.status();
   if (Status s = (*construction)->ValidateSize(req.n()); !s.ok()) return s;
-  return scheduler_->KeyFor(req.n(), canon.key, req.realization(), (*construction)->kind);
+  return scheduler_->producer().KeyFor(req.n(), canon.key, req.realization(), (*construction)->kind);
 }
 
 void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetKey& key,
@@ -164,7 +164,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
     return;
   }
   const FrequencyParams fp = DefaultFrequencyParams(key.n);
-  const OptimizerOptions& opt = scheduler_->options().optimizer;
+  const OptimizerOptions& opt = scheduler_->options().producer.optimizer;
   v1::OptimizationParameters* p = md->mutable_parameters();
   p->set_length(fp.length);
   p->set_width(fp.width);
@@ -172,7 +172,7 @@ void AlignSetService::FillSet(const Canonicalization& canon, const storage::SetK
   p->set_max_iterations(EffectiveMaxIterations(opt, key.n, key.dirs.count));
   p->set_learning_rate(opt.learning_rate);
   p->set_sw_weight(EffectiveSwWeight(opt, key.n));
-  p->set_seed(RealizationSeed(scheduler_->options().seed, key.realization));
+  p->set_seed(RealizationSeed(scheduler_->options().producer.seed, key.realization));
   p->set_algorithm_version(storage::kAlgorithmVersion);
 }
 }  // namespace alignset::server

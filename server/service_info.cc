@@ -118,7 +118,7 @@ void AlignSetService::FillMetrics(v1::MetricsResponse* out) const {
   out->set_heap_allocated_bytes(process.heap_allocated_bytes);
   out->set_heap_free_bytes(process.heap_free_bytes);
   out->set_allocator(process.allocator);
-  const SetProducer::MemoryUse caches = scheduler_->memory();
+  const SetProducer::MemoryUse caches = scheduler_->producer().memory();
   out->set_memory_cache_bytes(static_cast<int64_t>(caches.sets_bytes));
   out->set_memory_cache_capacity_bytes(static_cast<int64_t>(caches.sets_capacity));
   out->set_lattice_terms_bytes(static_cast<int64_t>(caches.lattice_bytes));
@@ -139,7 +139,7 @@ grpc::Status AlignSetService::GetCacheStats(grpc::ServerContext* ctx,
   resp->set_one_direction_sets(stats->one_direction_sets);
   resp->set_two_direction_sets(stats->two_direction_sets);
   resp->set_database_path(db_path_);
-  resp->set_profile_hint(scheduler_->ProfileFor(4096));
+  resp->set_profile_hint(scheduler_->producer().ProfileFor(4096));
   FillMetrics(resp->mutable_metrics());
   return grpc::Status::OK;
 }

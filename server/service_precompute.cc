@@ -141,7 +141,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
   auto n_of = [&](uint64_t j) { return req->n(static_cast<int>((first + j * step) / per_n)); };
   auto item = [&](uint64_t j) {
     const uint64_t c = first + j * step;
-    return scheduler_->KeyFor(n_of(j),
+    return scheduler_->producer().KeyFor(n_of(j),
                               space[order[(c / realizations) % space_size]],
                               static_cast<uint32_t>(c % realizations), (*construction)->kind);
   };
@@ -263,7 +263,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       // A run over many stored items still notices a client that left.
       if (ctx->IsCancelled() || client_gone) return std::nullopt;
       storage::SetKey key = item(j++);
-      auto stored = scheduler_->IsStored(key);
+      auto stored = scheduler_->producer().IsStored(key);
       if (stored.ok() && *stored) {
         p.set_cached_already(p.cached_already() + 1);
         send(&key, "", false);
@@ -272,7 +272,7 @@ grpc::Status AlignSetService::Precompute(grpc::ServerContext* ctx,
       if (window > 1) {
         // Every warm key goes through the wait list, its parent done or
         // not, so that the roots read after it start first.
-        if (const auto parent = scheduler_->LineageParentKey(key)) {
+        if (const auto parent = scheduler_->producer().LineageParentKey(key)) {
           unresolved.insert(KeyString(key));
           waiting.push_back({std::move(key), KeyString(*parent)});
           continue;

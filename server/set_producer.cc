@@ -42,7 +42,7 @@ std::string SetProducer::ProfileFor(uint32_t n, ConstructionKind construction) c
   std::lock_guard<std::mutex> lock(profile_mu_);
   auto it = profiles_.find(n);
   if (it != profiles_.end()) return it->second;
-  std::string p = storage::ProfileId(DefaultFrequencyParams(n), options_.optimizer, options_.seed);
+  std::string p = storage::KeyProfile(n, ConstructionOf(construction), options_.optimizer, options_.seed);
   profiles_.emplace(n, p);
   return p;
 }

@@ -47,7 +47,9 @@ class SetProducer {
     bool read_only = false;
     std::function<StatusOr<storage::SetRecord>(const storage::SetKey&, const std::function<bool()>&)> fill;
     int64_t max_cache_bytes = 0;
-    std::string eviction_order_file;  // Scheduler::Options::eviction_order_file
+    // With max_cache_bytes: where the eviction order is kept between starts
+    // (the cache file's path + ".served"; empty: not kept).
+    std::string eviction_order_file;
     // With max_cache_bytes: a set that must not be evicted (its key is
     // being produced).
     std::function<bool(const std::string&)> pinned;
@@ -60,9 +62,9 @@ class SetProducer {
   // The key of N points with canonical directions `dirs`: an optimized set
   // under this server's optimization profile, a constructed one under its
   // construction's profile (core/optimize/construction.h).
-  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs, uint32_t realization,
-                         ConstructionKind construction) const;
-  std::string ProfileFor(uint32_t n, ConstructionKind construction) const;
+  storage::SetKey KeyFor(uint32_t n, const CanonicalDirections& dirs, uint32_t realization = 0,
+                         ConstructionKind construction = ConstructionKind::kOptimized) const;
+  std::string ProfileFor(uint32_t n, ConstructionKind construction = ConstructionKind::kOptimized) const;
 
   // The set from memory, counted as a memory hit (and, with `touch`, as a
   // use for the evictor); null when memory does not hold it.

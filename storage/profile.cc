@@ -91,6 +91,12 @@ std::string ProfileId(const FrequencyParams& params, const OptimizerOptions& opt
   return hex;
 }
 
+std::string KeyProfile(uint32_t n, const Construction& construction, const OptimizerOptions& options,
+                       uint64_t seed) {
+  if (!construction.optimized()) return std::string(construction.profile);
+  return ProfileId(DefaultFrequencyParams(n), options, seed);
+}
+
 }  // namespace alignset::storage
 
 namespace alignset::storage {

@@ -8,6 +8,7 @@
 
 #include "core/align/canonical.h"
 #include "core/spectral/frequency_set.h"
+#include "core/optimize/construction.h"
 #include "core/optimize/optimizer.h"
 #include "core/optimize/realization.h"
 #include "core/util/point_set.h"
@@ -36,6 +37,14 @@ inline constexpr int kAlgorithmVersion = 9;
 // gives a new profile, so a stale set is never returned.
 std::string ProfileId(const FrequencyParams& params, const OptimizerOptions& options,
                       uint64_t seed, int algorithm_version = kAlgorithmVersion);
+
+// The profile a key of N points made by `construction` is cached under: a
+// construction's own fixed profile, or for the optimized sets the ProfileId
+// of N's default frequency set under the optimizer's options and seed (the
+// server's, or what `export` is told the server runs). The one place the
+// profile of a key is derived.
+std::string KeyProfile(uint32_t n, const Construction& construction, const OptimizerOptions& options,
+                       uint64_t seed);
 
 // Primary key of a cached canonical set.
 struct SetKey {

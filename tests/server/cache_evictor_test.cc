@@ -107,8 +107,8 @@ TEST_F(SchedulerPinTest, AKeyIsPinnedWhileACallWaitsForIt) {
   gate_->Close();
   Scheduler::Options o;
   o.workers = 1;
-  o.optimizer.max_iterations = 5;
-  o.max_cache_bytes = 1 << 20;
+  o.producer.optimizer.max_iterations = 5;
+  o.producer.max_cache_bytes = 1 << 20;
   StartWith(o);
   const storage::SetKey running = Key(64, 3), queued = Key(64, 4);
   auto t1 = MustAcquire(running, Priority::kInteractive);

@@ -51,14 +51,14 @@ TEST_F(LatticeJobTest, ALatticeKeyIsComputedWithoutTheEngineAndStored) {
   gate_->Close();
   Scheduler::Options o;
   o.workers = 1;
-  o.optimizer.max_iterations = 20;
+  o.producer.optimizer.max_iterations = 20;
   StartWith(o);
   const CanonicalDirections dirs{1, 30, 30};
-  const storage::SetKey lattice = scheduler_->KeyFor(256, dirs, 2, ConstructionKind::kLattice);
-  const storage::SetKey optimized = scheduler_->KeyFor(256, dirs, 2);
+  const storage::SetKey lattice = scheduler_->producer().KeyFor(256, dirs, 2, ConstructionKind::kLattice);
+  const storage::SetKey optimized = scheduler_->producer().KeyFor(256, dirs, 2);
   EXPECT_EQ(lattice.profile, "lattice-v2-w1");
   EXPECT_NE(optimized.profile, lattice.profile);
-  EXPECT_EQ(scheduler_->ProfileFor(256, ConstructionKind::kLattice), "lattice-v2-w1");
+  EXPECT_EQ(scheduler_->producer().ProfileFor(256, ConstructionKind::kLattice), "lattice-v2-w1");
 
   auto ticket = MustAcquire(lattice, Priority::kInteractive);
   ASSERT_NE(ticket, nullptr);
@@ -83,7 +83,7 @@ TEST_F(LatticeJobTest, ALatticeKeyIsComputedWithoutTheEngineAndStored) {
 
   // The quarter-degree key is chosen for its exact angle.
   const CanonicalDirections quarter{1, 30, 30, 1};  // 30.25
-  auto q = MustAcquire(scheduler_->KeyFor(256, quarter, 0, ConstructionKind::kLattice),
+  auto q = MustAcquire(scheduler_->producer().KeyFor(256, quarter, 0, ConstructionKind::kLattice),
                        Priority::kInteractive);
   ASSERT_NE(q, nullptr);
   WaitDone(*q, 300);
@@ -113,8 +113,8 @@ TEST_F(LatticeJobTest, ATentLatticeKeyIsTheFoldedLatticeUnderItsOwnProfile) {
   o.workers = 1;
   StartWith(o);
   const CanonicalDirections dirs{1, 30, 30};
-  const storage::SetKey plain = scheduler_->KeyFor(256, dirs, 3, ConstructionKind::kLattice);
-  const storage::SetKey tent = scheduler_->KeyFor(256, dirs, 3, ConstructionKind::kTentLattice);
+  const storage::SetKey plain = scheduler_->producer().KeyFor(256, dirs, 3, ConstructionKind::kLattice);
+  const storage::SetKey tent = scheduler_->producer().KeyFor(256, dirs, 3, ConstructionKind::kTentLattice);
   EXPECT_EQ(tent.profile, "tent-lattice-v1-w2");
   EXPECT_NE(tent.profile, plain.profile);
   EXPECT_EQ(ParseConstruction("tent-lattice").value()->kind, ConstructionKind::kTentLattice);
@@ -145,15 +145,15 @@ TEST_F(LatticeJobTest, ATentLatticeKeyIsTheFoldedLatticeUnderItsOwnProfile) {
 TEST_F(LatticeJobTest, KeysThatShareTheSearchesTermsGetTheLatticeAFreshSearchChooses) {
   Scheduler::Options o;
   o.workers = 2;
-  o.threads_per_worker = 1;
-  o.lattice_terms_bytes = 64 << 10;  // a few directions' terms: entries come and go
+  o.producer.threads_per_worker = 1;
+  o.producer.lattice_terms_bytes = 64 << 10;  // a few directions' terms: entries come and go
   StartWith(o);
   const std::vector<CanonicalDirections> keys = {{1, 30, 30}, {2, 10, 100}, {2, 30, 100}, {1, 10, 10},
                                                  {2, 12, 77},  {1, 30, 30, 1}};
   for (uint32_t realization : {0u, 5u}) {
     std::vector<std::unique_ptr<Ticket>> tickets;
     for (const CanonicalDirections& d : keys) {
-      tickets.push_back(MustAcquire(scheduler_->KeyFor(1024, d, realization, ConstructionKind::kLattice),
+      tickets.push_back(MustAcquire(scheduler_->producer().KeyFor(1024, d, realization, ConstructionKind::kLattice),
                                     Priority::kBatch));
       ASSERT_NE(tickets.back(), nullptr);
     }

@@ -25,10 +25,10 @@ class FairnessTest : public testing::SchedulerFixture {
     o.max_queue_per_client = per_client;
     o.time_slice = slice;
     o.max_paused = max_paused;
-    o.optimizer.max_iterations = max_iterations;
+    o.producer.optimizer.max_iterations = max_iterations;
     // One optimization per key (the key lineage, which starts a key's
     // ancestors first, has its own end-to-end tests).
-    o.optimizer.warm_budget_fraction = 0.0;
+    o.producer.optimizer.warm_budget_fraction = 0.0;
     StartWith(o);
   }
   static void WaitDone(const Ticket& t) { SchedulerFixture::WaitDone(t, 1200); }

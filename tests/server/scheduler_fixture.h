@@ -37,7 +37,7 @@ class SchedulerFixture : public ::testing::Test {
     ASSERT_TRUE(s.ok()) << s.status().message();
     scheduler_ = std::move(s).value();
   }
-  storage::SetKey Key(uint32_t n, int phi) { return scheduler_->KeyFor(n, {1, phi, phi}); }
+  storage::SetKey Key(uint32_t n, int phi) { return scheduler_->producer().KeyFor(n, {1, phi, phi}); }
   std::unique_ptr<Ticket> MustAcquire(const storage::SetKey& key, Priority p,
                                       const std::string& client = "") {
     auto t = scheduler_->Acquire(key, p, client);

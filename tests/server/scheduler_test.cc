@@ -17,11 +17,11 @@ class SchedulerTest : public testing::SchedulerFixture {
     Scheduler::Options o;
     o.workers = workers;
     o.max_queue = max_queue;
-    o.optimizer.max_iterations = max_iterations;
+    o.producer.optimizer.max_iterations = max_iterations;
     // One optimization per key (the key lineage, which starts a key's
     // ancestors first, has its own end-to-end tests).
-    o.optimizer.warm_budget_fraction = 0.0;
-    o.optimizer.progress_every = 1;
+    o.producer.optimizer.warm_budget_fraction = 0.0;
+    o.producer.optimizer.progress_every = 1;
     StartWith(o);
   }
   static void WaitDone(const Ticket& t) { SchedulerFixture::WaitDone(t, 600); }
