@@ -34,10 +34,12 @@ int RunStats(const StatsOptions& o) {
   }
   std::printf("profile (N=4096)  %s\n", stats->profile_hint.c_str());
   std::printf("uptime            %.0f s\n", m.uptime_seconds);
-  std::printf("requests          get %llu, watch %llu, precompute %llu, samples %llu, invalid %llu\n",
+  std::printf("requests          get %llu, watch %llu, precompute %llu, samples %llu, estimate %llu, "
+              "invalid %llu, unauthenticated %llu\n",
               (unsigned long long)m.requests_get, (unsigned long long)m.requests_watch,
               (unsigned long long)m.requests_precompute, (unsigned long long)m.requests_samples,
-              (unsigned long long)m.requests_invalid);
+              (unsigned long long)m.requests_estimate, (unsigned long long)m.requests_invalid,
+              (unsigned long long)m.requests_unauthenticated);
   std::printf("cache             hits %llu memory + %llu db, misses %llu, corrupt rows %llu\n",
               (unsigned long long)m.cache_hits_memory, (unsigned long long)m.cache_hits_db,
               (unsigned long long)m.cache_misses, (unsigned long long)m.corrupt_rows);
@@ -48,8 +50,14 @@ int RunStats(const StatsOptions& o) {
               (unsigned long long)m.shared_waits);
   std::printf("optimize time     total %.2f s, max %.2f s\n", m.optimize_seconds_total,
               m.optimize_seconds_max);
-  std::printf("queue             %u waiting, %u running, %llu rejected (full)\n", m.queue_length,
-              m.running, (unsigned long long)m.rejected_queue_full);
+  std::printf("queue             %u waiting, %u running, %u paused (%llu slices yielded), %llu rejected "
+              "(full), %llu rejected (client limit)\n",
+              m.queue_length, m.running, m.paused, (unsigned long long)m.optimizations_paused,
+              (unsigned long long)m.rejected_queue_full, (unsigned long long)m.rejected_client_limit);
+  std::printf("calls             %u waiting for a set, %llu rejected (waiting limit)\n", m.waiting_calls,
+              (unsigned long long)m.rejected_waiting_limit);
+  std::printf("integrity         %llu database errors, %llu sets served but not stored\n",
+              (unsigned long long)m.database_integrity_errors, (unsigned long long)m.sets_not_stored);
   // A replica says what it could not serve and what its writer filled; a
   // bounded writer what it evicted (both lines always, so a script can parse
   // them: "no" / "unbounded" when the server is neither).

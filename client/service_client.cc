@@ -129,6 +129,14 @@ ServiceMetrics ToMetrics(const v1::MetricsResponse& r) {
   m.rejected_queue_full = r.rejected_queue_full();
   m.queue_length = r.queue_length();
   m.running = r.running();
+  m.paused = r.paused();
+  m.waiting_calls = r.waiting_calls();
+  m.optimizations_paused = r.optimizations_paused();
+  m.rejected_client_limit = r.rejected_client_limit();
+  m.rejected_waiting_limit = r.rejected_waiting_limit();
+  m.requests_unauthenticated = r.requests_unauthenticated();
+  m.database_integrity_errors = r.database_integrity_errors();
+  m.sets_not_stored = r.sets_not_stored();
   m.optimize_seconds_total = r.optimize_seconds_total();
   m.optimize_seconds_max = r.optimize_seconds_max();
   m.uptime_seconds = r.uptime_seconds();

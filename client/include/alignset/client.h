@@ -192,6 +192,14 @@ struct ServiceMetrics {
   uint64_t optimizations_started = 0, optimizations_completed = 0, optimizations_cancelled = 0,
            optimizations_failed = 0, shared_waits = 0, rejected_queue_full = 0;
   uint32_t queue_length = 0, running = 0;
+  // Fairness and bounds: jobs waiting with a paused state and the slices that
+  // yielded a worker, calls waiting for a set now, what the per-client and
+  // waiting-call limits refused, calls refused for a missing token.
+  uint32_t paused = 0, waiting_calls = 0;
+  uint64_t optimizations_paused = 0, rejected_client_limit = 0, rejected_waiting_limit = 0,
+           requests_unauthenticated = 0;
+  // The file's health: integrity errors seen, sets served but not written.
+  uint64_t database_integrity_errors = 0, sets_not_stored = 0;
   double optimize_seconds_total = 0.0, optimize_seconds_max = 0.0, uptime_seconds = 0.0;
   // A read-only replica (--read-only): misses it answered NOT_FOUND (no
   // --fill-from) and sets its writer filled (--fill-from, kept in memory).
