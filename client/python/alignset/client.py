@@ -39,8 +39,8 @@ class AlignedSet:
         other set shifted on the torus. Unbiased either way; a tent-lattice
         from a server too old to tell its generator is shifted on the torus
         too, and then integrates smooth non-periodic shading only about as
-        well as Owen-Sobol. The recipe of PixelPoints in the C++ header
-        <alignset/pixel_sampler.h>."""
+        well as Owen-Sobol. The sampler library's SetPixelPoints does the same
+        in C++ (<alignset/aligned_sampler.h>)."""
         sx, sy = (float(v) for v in shift)
         if not (0.0 <= sx < 1.0 and 0.0 <= sy < 1.0):
             raise ValueError("shift must lie in [0, 1)^2")
