@@ -158,7 +158,7 @@ TEST(CliConventions, UsageErrorsExitTwoWithOneLineNamingTheCommand) {
       {"get --dir 30 -o " + out, "alignset get: --n is required"},
       {"get -n 64 --dir 30 --dir 40 --dir 50 -o " + out, "alignset get: give one or two"},
       {"get -n 64 --dir 30 -o " + out + " --token-file /nonexistent", "alignset get: cannot read"},
-      {"precompute --n 8", "alignset precompute: --n: 8 is out of range"},
+      {"precompute --n 8", "alignset precompute: --n: N = 8 is below the minimum of 16 points"},
       {"precompute --n 64 --shard 3", "alignset precompute: --shard"},
       {"precompute --n 64 --space 3dir", "alignset precompute: --space"},
       {"stats --limit -1", "alignset stats: --limit"},
