@@ -1,11 +1,12 @@
 // `alignset table`: the table file a renderer loads (<alignset/set_table.h>)
-// for the constructions core computes on its own (lattice, tent-lattice,
-// lattice-sequence), searched here with the same core search the server runs
+// for the constructions core builds without the optimizer (lattice,
+// tent-lattice, lattice-sequence, net), searched here with the same core search the server runs
 // for a key (Construction::Build of the key's exact angles, realization 0),
 // so the file equals `alignset export` of a server's cache byte for byte.
 // No server, no SQLite: a render-farm node or a renderer's build makes its
-// table with the command line alone. The optimized sets and nets stay the
-// server's to make (`alignset export` writes them from its cache).
+// table with the command line alone. The optimized sets stay the server's
+// to make (minutes a key, keyed by its settings; `alignset export` writes
+// them from its cache).
 #include <alignset/set_table.h>
 
 #include <cstdio>
@@ -50,7 +51,8 @@ SpaceShape ShapeOf(TableSpace space) {
 
 // One section: every canonical key of the space built as the server builds a
 // missing key (its exact angles, realization 0); a lattice kept as its
-// generator, a lattice sequence as its N points (what `export` stores).
+// generator, a lattice sequence or a net as its N points (what `export`
+// stores).
 StatusOr<TableSection> BuildSection(uint32_t n, const Construction& c, TableSpace space,
                                     const ConstructionContext& context, Progress& progress, double& done,
                                     double total) {
@@ -87,7 +89,7 @@ int RunTable(const TableOptions& o) {
   std::vector<const Construction*> constructions;
   for (const std::string& name : o.constructions) {
     const Construction& c = *FindConstruction(name);
-    if (c.optimized() || c.kind == ConstructionKind::kNet) {
+    if (c.optimized()) {
       return ReportError("table",
                          Status::InvalidArgument("construction '" + name +
                                                  "' is made by the server: precompute it there, then "
@@ -144,8 +146,8 @@ void AddTableCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(PointCount());
   c->add_option("--construction", o->constructions,
-                "constructions, comma-separated: lattice (default), tent-lattice, lattice-sequence\n"
-                "(the optimized sets and nets come from a server: alignset export)")
+                "constructions, comma-separated: lattice (default), tent-lattice, lattice-sequence,\n"
+                "net (the optimized sets come from a server: alignset export)")
       ->delimiter(',')
       ->check(ConstructionName());
   c->add_option("--space", o->spaces, "key spaces, comma-separated: 1dir (default; 46 keys), 1dir-quarter (181), 2dir (4141)")

@@ -36,6 +36,14 @@ TEST(TableTest, ALatticeTableWithoutAServerIsTheExportedTable) {
     EXPECT_TRUE(got == want) << "alignset table wrote " << got.size() << " bytes that differ from export's "
                              << want.size();
   }
+  // A net (points, not a generator) the same way.
+  auto pre = Cli("precompute --server " + a + " -n 64 --space 1dir --construction net");
+  ASSERT_EQ(pre.exit_code, 0) << pre.output;
+  auto ex = Cli("export --db " + server.db_path() + " -n 64 --construction net -o " + dir.path() + "/net-e.tbl");
+  ASSERT_EQ(ex.exit_code, 0) << ex.output;
+  auto made = Cli("table -n 64 --construction net -o " + dir.path() + "/net-t.tbl");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  EXPECT_TRUE(ReadText(dir.path() + "/net-t.tbl") == ReadText(dir.path() + "/net-e.tbl"));
 }
 
 TEST(TableTest, WhatTheServerMakesIsRefusedWithWhereToGetIt) {
@@ -44,7 +52,8 @@ TEST(TableTest, WhatTheServerMakesIsRefusedWithWhereToGetIt) {
   EXPECT_EQ(opt.exit_code, 2);
   EXPECT_NE(opt.output.find("alignset export --construction optimized"), std::string::npos) << opt.output;
   auto net = Cli("table -n 48 --construction lattice-sequence,net -o " + dir.path() + "/t.tbl");
-  EXPECT_EQ(net.exit_code, 2) << net.output;
+  EXPECT_EQ(net.exit_code, 2) << net.output;  // a net's N is a power of two
+  EXPECT_NE(net.output.find("construction 'net' needs N a power of two"), std::string::npos) << net.output;
   auto space = Cli("table -n 48 --space 3dir -o " + dir.path() + "/t.tbl");
   EXPECT_EQ(space.exit_code, 2);
   EXPECT_NE(space.output.find("'3dir' is not 1dir, 1dir-quarter or 2dir"), std::string::npos) << space.output;
