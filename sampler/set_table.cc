@@ -120,14 +120,26 @@ struct SetTable::Section {
   }
 };
 
+// (N, construction, space), compared as a view so that a lookup by a
+// string_view builds no string (libstdc++'s tuple comparison does not mix a
+// string with a string_view under every compiler).
+struct SectionKeyLess {
+  using is_transparent = void;
+  using Key = std::tuple<uint32_t, std::string, int>;
+  using View = std::tuple<uint32_t, std::string_view, int>;
+  static View AsView(const Key& k) { return {std::get<0>(k), std::get<1>(k), std::get<2>(k)}; }
+  static const View& AsView(const View& v) { return v; }
+  template <class A, class B>
+  bool operator()(const A& a, const B& b) const { return AsView(a) < AsView(b); }
+};
+
 struct SetTable::Impl {
   std::vector<TableSection> sections;
-  // (N, construction, space) -> the section and, for points, its aligned
-  // sets. The transparent comparator finds a string_view without a copy.
-  std::map<std::tuple<uint32_t, std::string, int>, Section, std::less<>> by_key;
+  // (N, construction, space) -> the section and, for points, its aligned sets.
+  std::map<SectionKeyLess::Key, Section, SectionKeyLess> by_key;
 
   const Section* Find(uint32_t n, std::string_view construction, TableSpace space) const {
-    auto it = by_key.find(std::make_tuple(n, construction, static_cast<int>(space)));
+    auto it = by_key.find(SectionKeyLess::View(n, construction, static_cast<int>(space)));
     return it == by_key.end() ? nullptr : &it->second;
   }
 };
