@@ -52,7 +52,7 @@ TOP_ALLOWED = {
     "server": ["core", "storage", "proto"],
     # The sampler library a renderer links: core and the public headers only.
     "sampler": ["core", PUBLIC],
-    # The installed headers: client.h, pixel_sampler.h, set_table.h, ... and core's
+    # The installed headers: client.h, npy.h, set_table.h, set_choice.h, ... and core's
     # status.h, point_set.h, directions.h (installed under <alignset/>).
     PUBLIC: ["core"],
     # The renderer uses the public API as a user's renderer would: never the
@@ -101,6 +101,15 @@ def owner_of_include(first, rest, quoted, top_dirs):
     if quoted and (first in TOP_ALLOWED or first in top_dirs):
         return first
     return None
+
+
+def public_home(root, first, rest):
+    """The library whose public headers hold <alignset/REST>: "sampler", "client"
+    (version.h is generated for the client), or None for core's installed headers."""
+    for lib in ("sampler", "client"):
+        if os.path.exists(os.path.join(root, lib, "include", first, rest)):
+            return lib
+    return "client" if rest == "version.h" else None
 
 
 def has_sources(path):
@@ -185,6 +194,12 @@ def scan(root):
                         if inc_node != node and inc_node not in TOP_ALLOWED[node]:
                             errors.append("%s: %s may not include %s" % (where, node, shown))
                             continue
+                        # The two libraries' public headers stand apart: sampler/ (its
+                        # sources and headers) includes nothing of client/'s, nor the reverse.
+                        home = public_home(root, inc_first, inc_rest) if inc_node == PUBLIC else None
+                        if home is not None and top in ("sampler", "client") and home != top:
+                            errors.append("%s: %s/ may not include %s, a header of %s/" % (where, top, shown, home))
+                            continue
                         if idea is not None and inc_node == "core":
                             inc_idea = inc_rest.split("/", 1)[0]
                             if "/" not in inc_rest:
@@ -205,6 +220,7 @@ def self_test():
         write("core/spectral/engine.h", '#include "core/util/status.h"\n')
         write("render/scene.h", '#include "core/util/status.h"\n#include <alignset/client.h>\n')
         write("client/include/alignset/client.h", "#include <alignset/status.h>\n")
+        write("sampler/include/alignset/set_table.h", "#include <alignset/status.h>\n")
         write("cli/cmd_render.cc", '#include "render/scene.h"\n#include "cli/progress.h"\n')
         write("bench/render/main.cc", '#include "render/scene.h"\n#include "server/service.h"\n')
         if scan(tmp):
@@ -229,6 +245,9 @@ def self_test():
             "render/bad_cli.cc": '#include "cli/progress.h"\n',           # render -> the command line
             "sampler/bad_client.cc": '#include "client/service_client.h"\n',  # sampler -> the client's internals
             "sampler/bad_storage.cc": '#include "storage/set_cache.h"\n',     # sampler -> SQLite
+            "sampler/bad_client_api.cc": "#include <alignset/client.h>\n",     # sampler -> the client's API
+            "sampler/include/alignset/bad.h": "#include <alignset/client.h>\n",  # its public header too
+            "client/bad_sampler_api.cc": "#include <alignset/set_table.h>\n",  # client -> the sampler's API
             "newfolder/x.cc": "",                                            # a folder without an entry
         }
         for rel, text in planted.items():

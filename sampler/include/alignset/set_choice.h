@@ -2,8 +2,8 @@
 
 // Which aligned set a pixel reads, from its dominant directions: the step of
 // the per-pixel recipe that a renderer shares with the server's key space.
-// Used by the sampler library (<alignset/aligned_sampler.h>) and the client's
-// recipe helpers (<alignset/pixel_sampler.h>). Header-only.
+// Used by the sampler library (<alignset/aligned_sampler.h>) and the project's
+// renderer (render/). Header-only.
 
 #include <alignset/directions.h>
 
