@@ -4,6 +4,7 @@
 #include "alignset_bridge.h"
 
 #include <alignset/aligned_sampler.h>
+#include <alignset/joint_lattice.h>
 #include <alignset/set_table.h>
 
 #include <cmath>
@@ -188,6 +189,38 @@ void Planner::MainPoints(Domain d, size_t pixel, Point *out, Scratch &scratch) c
 
 uint32_t Planner::ThirdMultiplier(Domain d, size_t pixel) const {
     return impl->third[d][pixel];
+}
+
+struct JointPoints::Impl {
+    alignset::JointLattice lattice;
+};
+
+JointPoints::JointPoints(std::unique_ptr<Impl> impl) : impl(std::move(impl)) {}
+JointPoints::~JointPoints() = default;
+
+std::unique_ptr<JointPoints> JointPoints::Create(int n, int dimensions, uint64_t seed,
+                                                 const std::vector<uint32_t> &folds,
+                                                 std::string *error) {
+    if (n < 0 || dimensions < 0) {
+        *error = "joint lattice: N and the dimension count must not be negative";
+        return nullptr;
+    }
+    auto lattice = alignset::JointLattice::Create(uint32_t(n), uint32_t(dimensions), seed, folds);
+    if (!lattice.ok()) {
+        *error = lattice.status().ToString();
+        return nullptr;
+    }
+    auto impl = std::make_unique<Impl>();
+    impl->lattice = std::move(*lattice);
+    return std::unique_ptr<JointPoints>(new JointPoints(std::move(impl)));
+}
+
+int JointPoints::Dimensions() const {
+    return int(impl->lattice.dimensions());
+}
+
+double JointPoints::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
+    return impl->lattice.Sample(pixel, i, d);
 }
 
 }  // namespace pbrt_alignset

@@ -29,7 +29,16 @@ STAT_COUNTER("Aligned sampler/Pixels with a light-sample direction", nLightDirec
 namespace {
 
 // Which of a pixel's 2-D samples take aligned points.
-enum class Aligned { kFilmAndLight, kFilm, kLight, kNone };
+// kJoint: no pre-pass and no table, one joint lattice a pixel over the film
+// and the dimensions of "jointdimensions" (alignset's JointLattice).
+enum class Aligned { kFilmAndLight, kFilm, kLight, kNone, kJoint };
+
+// The sampler dimensions (as this sampler counts them: GetPixel2D takes
+// none) that "jointdimensions" may name, and their default: the first light
+// sample (5, 6), the wavelength (0), the first BSDF direction (8, 9) and lobe
+// (7), the light choice (4). The film takes the lattice's first two.
+constexpr int kJointMaxDimension = 64;
+constexpr int kJointDefault[] = {5, 6, 0, 8, 9, 7, 4};
 
 constexpr int kPassPrepass = 0, kPassMain = 1;
 // The dimension of pbrt's wavelength sample: RayIntegrator::EvaluatePixelSample's
@@ -54,12 +63,25 @@ struct AlignedSampler::Shared {
     std::string tablePath, construction;
     std::unique_ptr<Planner> planner;
     double prepassWeight = 0;  // M^1.5 / (M^1.5 + 2 N^1.5)
+    // kJoint: the lattice, and each sampler dimension's lattice dimension
+    // (-1: padded by the library).
+    std::unique_ptr<pbrt_alignset::JointPoints> joint;
+    int jointOf[kJointMaxDimension];
+    int imageWidth = 0;  // the pixel index is y * imageWidth + x
 
     // Set by StartRender.
     Bounds2i bounds;
     std::vector<double> values;   // each pixel's M pre-pass luminances, in sample order
     std::vector<uint8_t> planned;  // written by the pixel's own thread only
 
+    bool Joint() const { return aligned == Aligned::kJoint; }
+    // Dimension `dim` of sample i of the pixel of index `pixel` under kJoint.
+    Float JointSample(uint64_t pixel, int i, int dim) const {
+        const uint32_t d = dim >= 0 && dim < kJointMaxDimension && jointOf[dim] >= 0
+                               ? uint32_t(jointOf[dim])
+                               : uint32_t(16 + (dim + 2));  // past any lattice dimension
+        return std::min(Float(joint->Sample(pixel, uint32_t(i), d)), OneMinusEpsilon);
+    }
     bool AlignsFilm() const {
         return aligned == Aligned::kFilmAndLight || aligned == Aligned::kFilm;
     }
@@ -88,6 +110,7 @@ struct AlignedSampler::Local {
         return pass == kPassPrepass ? sampleIndex : sampleIndex - s.prepass;
     }
     int PassCount(const Shared &s) const { return pass == kPassPrepass ? s.prepass : s.main; }
+    uint64_t jointPixel = 0;  // kJoint: the library's pixel index
     std::vector<Point> filmPoints, lightPoints;
     // The main pass's wavelength sample as a third lattice coordinate
     // (Planner::ThirdMultiplier) of the film set or, without one, the light
@@ -119,6 +142,8 @@ int AlignedSampler::PrepassSamples() const {
 void AlignedSampler::StartRender(Bounds2i pixelBounds) {
     Shared &s = *shared;
     s.bounds = pixelBounds;
+    if (s.Joint())
+        return;  // no pre-pass values and no plans
     size_t pixels = size_t(pixelBounds.Area());
     s.values.assign(pixels * size_t(s.prepass), 0.0);
     s.planned.assign(pixels, 0);
@@ -127,6 +152,8 @@ void AlignedSampler::StartRender(Bounds2i pixelBounds) {
 
 Float AlignedSampler::RecordSample(Point2i pPixel, int sampleIndex, Float luminance) {
     Shared &s = *shared;
+    if (s.Joint())
+        return 1;  // every sample weighs the same
     if (s.values.empty())
         LOG_FATAL("AlignedSampler: RecordSample before StartRender");
     if (sampleIndex < s.prepass) {
@@ -155,6 +182,12 @@ void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension)
     l.sampleIndex = sampleIndex;
     l.dimension = dimension;
     const int pass = sampleIndex < s.prepass ? kPassPrepass : kPassMain;
+    if (s.Joint()) {
+        l.pixel = p;
+        l.pass = kPassMain;
+        l.jointPixel = uint64_t(p.y) * uint64_t(s.imageWidth) + uint64_t(p.x);
+        return;
+    }
     if (p == l.pixel && pass == l.pass)
         return;
     l.pixel = p;
@@ -219,6 +252,8 @@ Float AlignedSampler::Get1D() {
     Local &l = *local;
     const int i = l.IndexInPass(s);
     const int dim = l.dimension++;
+    if (s.Joint())
+        return s.JointSample(l.jointPixel, i, dim);
     if (l.pass == kPassMain && dim == kWavelengthDimension && l.third != 0) {
         // The lattice index of this sample's point in the set it pairs with.
         const uint64_t k = l.thirdDomain == kFilm
@@ -237,6 +272,8 @@ Point2f AlignedSampler::Get2D() {
     const int i = l.IndexInPass(s), count = l.PassCount(s);
     const int dim = l.dimension;
     l.dimension += 2;
+    if (s.Joint())
+        return Point2f(s.JointSample(l.jointPixel, i, dim), s.JointSample(l.jointPixel, i, dim + 1));
     if (dim == s.lightDimension && s.AlignsLight()) {
         const Point &q = l.lightPoints[s.LightIndex(l.pixel, l.pass, i, count)];
         return Point2f(Float(q.x), Float(q.y));
@@ -249,6 +286,9 @@ Point2f AlignedSampler::GetPixel2D() {
     const Shared &s = *shared;
     Local &l = *local;
     const int i = l.IndexInPass(s), count = l.PassCount(s);
+    if (s.Joint())  // the lattice's first two dimensions
+        return Point2f(std::min(Float(s.joint->Sample(l.jointPixel, uint32_t(i), 0)), OneMinusEpsilon),
+                       std::min(Float(s.joint->Sample(l.jointPixel, uint32_t(i), 1)), OneMinusEpsilon));
     if (s.AlignsFilm()) {
         const Point &q = l.filmPoints[i];
         return Point2f(Float(q.x), Float(q.y));
@@ -291,11 +331,61 @@ Sampler AlignedSampler::Clone(Allocator alloc) {
 
 std::string AlignedSampler::ToString() const {
     const Shared &s = *shared;
+    if (s.Joint())
+        return StringPrintf("[ AlignedSampler align: joint samplesPerPixel: %d seed: %d "
+                            "latticeDimensions: %d ]",
+                            s.samplesPerPixel, s.seed, s.joint->Dimensions());
     return StringPrintf("[ AlignedSampler table: %s construction: %s samplesPerPixel: %d "
                         "prepass: %d main: %d seed: %d lightDimension: %d pairWavelength: %s ]",
                         s.tablePath, s.construction, s.samplesPerPixel, s.prepass, s.main,
                         s.seed, s.lightDimension, s.pairWavelength);
 }
+
+namespace {
+
+// align "joint": the lattice over the film and "jointdimensions".
+AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
+                            const ParameterDictionary &parameters, Point2i fullResolution,
+                            const FileLoc *loc, Allocator alloc) {
+    const int t = s->samplesPerPixel;
+    if (t < 2)
+        ErrorExit(loc, "aligned: align \"joint\" needs at least 2 samples a pixel, got %d.", t);
+    if (parameters.GetOneInt("prepasssamples", 0) != 0)
+        ErrorExit(loc, "aligned: align \"joint\" has no pre-pass; \"prepasssamples\" must be 0 "
+                       "or absent.");
+    s->prepass = 0;
+    s->main = t;
+    s->prepassWeight = 0;
+    s->imageWidth = std::max(fullResolution.x, 1);
+    std::vector<int> dims = parameters.GetIntArray("jointdimensions");
+    if (dims.empty())
+        dims.assign(std::begin(kJointDefault), std::end(kJointDefault));
+    std::fill(std::begin(s->jointOf), std::end(s->jointOf), -1);
+    for (size_t k = 0; k < dims.size(); ++k) {
+        const int d = dims[k];
+        if (d < 0 || d >= kJointMaxDimension)
+            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d; each must be in "
+                           "[0, %d).", d, kJointMaxDimension);
+        if (s->jointOf[d] >= 0)
+            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d twice.", d);
+        s->jointOf[d] = int(k) + 2;  // after the film's two
+    }
+    // The wavelength sample's integrand has period 1 / NSpectrumSamples
+    // (SampleVisibleWavelengths draws at u + j / NSpectrumSamples): folded
+    // by the library.
+    std::vector<uint32_t> folds(dims.size() + 2, 1);
+    if (s->jointOf[kWavelengthDimension] >= 0)
+        folds[s->jointOf[kWavelengthDimension]] = uint32_t(NSpectrumSamples);
+    std::string error;
+    s->joint = pbrt_alignset::JointPoints::Create(t, int(dims.size()) + 2,
+                                                  Hash(s->seed, 0x6a6f696e74), folds, &error);
+    if (!s->joint)
+        ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
+                  t, int(dims.size()) + 2, error);
+    return alloc.new_object<AlignedSampler>(std::move(s));
+}
+
+}  // namespace
 
 AlignedSampler *AlignedSampler::Create(const ParameterDictionary &parameters,
                                        Point2i fullResolution, const FileLoc *loc,
@@ -323,10 +413,14 @@ AlignedSampler *AlignedSampler::Create(const ParameterDictionary &parameters,
         s->aligned = Aligned::kLight;
     else if (aligned == "none")
         s->aligned = Aligned::kNone;
+    else if (aligned == "joint")
+        s->aligned = Aligned::kJoint;
     else
         ErrorExit(loc, "aligned: \"align\" is \"%s\"; it must be \"film+light\", \"film\", "
-                       "\"light\" or \"none\".", aligned);
+                       "\"light\", \"none\" or \"joint\".", aligned);
     const int t = s->samplesPerPixel;
+    if (s->Joint())
+        return CreateJoint(std::move(s), parameters, fullResolution, loc, alloc);
     s->prepass = parameters.GetOneInt("prepasssamples", t / 4);
     s->main = t - s->prepass;
     if (s->prepass < 16 || s->main < 1)
