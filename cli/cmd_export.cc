@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/table_space.h"
 #include "cli/table_summary.h"
 #include "core/align/canonical.h"
 #include "core/optimize/aligned_lattice.h"
@@ -40,8 +41,9 @@ StatusOr<TableSection> ReadSection(storage::SetCache& cache, const ExportOptions
   s.n = n;
   s.construction = std::string(c.name);
   s.space = space;
-  const int count = space == TableSpace::kTwoDirections ? 2 : 1;
-  const AngleGrid grid = space == TableSpace::kOneQuarter ? AngleGrid::kQuarterDegree : AngleGrid::kWholeDegree;
+  const SpaceShape shape = ShapeOf(space);
+  const int count = shape.directions;
+  const AngleGrid grid = shape.grid;
   const std::string profile = c.optimized() && !o.profile.empty() ? o.profile
                                                                  : storage::KeyProfile(n, c, OptimizerOptions{}, o.seed);
   const size_t keys = CanonicalKeyCount(count, grid);
@@ -92,12 +94,9 @@ int RunExport(const ExportOptions& in) {
     return ReportError("export", Status::NotFound(o.db + " does not exist (start the server, precompute, then export)"),
                        kExitUsage);
   }
-  std::vector<TableSpace> spaces;
-  for (const std::string& s : o.spaces) {
-    auto space = ParseTableSpace(s);
-    if (!space.ok()) return ReportError("export", space.status(), kExitUsage);
-    spaces.push_back(*space);
-  }
+  auto parsed = ParseTableSpaces(o.spaces);
+  if (!parsed.ok()) return ReportError("export", parsed.status(), kExitUsage);
+  const std::vector<TableSpace>& spaces = *parsed;
   storage::SetCache::Options co;
   co.read_only = true;
   auto cache = storage::SetCache::Open(o.db, co);

@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "cli/table_space.h"
 #include "cli/table_summary.h"
 #include "core/align/canonical.h"
 #include "core/optimize/construction.h"
@@ -35,20 +36,6 @@ struct TableOptions {
   std::string out;
 };
 
-struct SpaceShape {
-  int count;
-  AngleGrid grid;
-};
-
-SpaceShape ShapeOf(TableSpace space) {
-  switch (space) {
-    case TableSpace::kOneDirection: return {1, AngleGrid::kWholeDegree};
-    case TableSpace::kOneQuarter: return {1, AngleGrid::kQuarterDegree};
-    case TableSpace::kTwoDirections: return {2, AngleGrid::kWholeDegree};
-  }
-  return {1, AngleGrid::kWholeDegree};
-}
-
 // One section: every canonical key of the space built as the server builds a
 // missing key (its exact angles, realization 0); a lattice kept as its
 // generator, a lattice sequence or a net as its N points (what `export`
@@ -61,9 +48,9 @@ StatusOr<TableSection> BuildSection(uint32_t n, const Construction& c, TableSpac
   s.construction = std::string(c.name);
   s.space = space;
   const SpaceShape shape = ShapeOf(space);
-  const size_t keys = CanonicalKeyCount(shape.count, shape.grid);
+  const size_t keys = CanonicalKeyCount(shape.directions, shape.grid);
   for (size_t i = 0; i < keys; ++i) {
-    const CanonicalDirections key = CanonicalKeyAt(shape.count, i, shape.grid);
+    const CanonicalDirections key = CanonicalKeyAt(shape.directions, i, shape.grid);
     std::vector<double> dirs = {Phi1Degrees(key)};
     if (key.count == 2) dirs.push_back(Phi2Degrees(key));
     auto made = c.Build(n, dirs, 0, context);
@@ -80,12 +67,9 @@ StatusOr<TableSection> BuildSection(uint32_t n, const Construction& c, TableSpac
 }
 
 int RunTable(const TableOptions& o) {
-  std::vector<TableSpace> spaces;
-  for (const std::string& s : o.spaces) {
-    auto space = ParseTableSpace(s);
-    if (!space.ok()) return ReportError("table", space.status(), kExitUsage);
-    spaces.push_back(*space);
-  }
+  auto parsed = ParseTableSpaces(o.spaces);
+  if (!parsed.ok()) return ReportError("table", parsed.status(), kExitUsage);
+  const std::vector<TableSpace>& spaces = *parsed;
   std::vector<const Construction*> constructions;
   for (const std::string& name : o.constructions) {
     const Construction& c = *FindConstruction(name);
@@ -104,7 +88,7 @@ int RunTable(const TableOptions& o) {
   double total = 0.0;
   for (TableSpace space : spaces) {
     const SpaceShape shape = ShapeOf(space);
-    total += static_cast<double>(CanonicalKeyCount(shape.count, shape.grid));
+    total += static_cast<double>(CanonicalKeyCount(shape.directions, shape.grid));
   }
   total *= static_cast<double>(o.n.size() * constructions.size());
 
