@@ -117,6 +117,7 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
     candidates.clear();
     spacing.clear();
     double best_spacing = 0.0;
+    double chosen_spacing = 0.0;
     for (uint32_t c = 1; c <= n / 2; ++c) {  // c and n - c give the same lattice up to a mirror
       if (std::gcd(c, n) != 1) continue;
       double worst = INFINITY;
@@ -141,8 +142,13 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
       if (sum < best_sum) {
         best_sum = sum;
         best = c;
+        chosen_spacing = spacing[m];
       }
     }
+    // No component left whose every pair keeps off a few lines (N = 16 has
+    // four candidates): this dimension and the rest are padded, which pairs
+    // them at random, rather than put on a line with an earlier one.
+    if (chosen_spacing < kJointLatticeMinSpacing) break;
     l.z_.push_back(best);
     for (uint32_t k = 0; k < n; ++k) {
       prod[k] *= 1.0 + w * kernel[static_cast<uint32_t>((static_cast<uint64_t>(k) * best) % n)];

@@ -130,6 +130,36 @@ TEST(JointLattice, TheFilmAndLightPairsAreGoodLatticesAtEveryRendererN) {
   }
 }
 
+TEST(JointLattice, ASmallNStopsTheLatticeBeforeAPairFallsOnAFewLines) {
+  // pbrt's nine: at N = 16 the fifth component has only the four odd
+  // candidates, each a repeat or near it; the lattice keeps four dimensions
+  // and Sample pads the rest. Whatever N, every pair of the lattice keeps
+  // the minimum spacing, and from 128 points on all nine are lattice.
+  for (uint32_t n : {2u, 3u, 16u, 24u, 32u, 48u, 64u, 96u, 128u, 192u, 256u, 1024u, 4096u}) {
+    auto l = JointLattice::Create(n, 9, 1);
+    ASSERT_TRUE(l.ok());
+    const std::vector<uint32_t>& z = l->generator();
+    ASSERT_GE(z.size(), 1u);
+    for (size_t a = 0; a < z.size(); ++a) {
+      for (size_t b = a + 1; b < z.size(); ++b) {
+        EXPECT_GE(JointLatticePairSpacing(n, z[a], z[b]) + 1e-9, kJointLatticeMinSpacing)
+            << "N=" << n << " dimensions " << a << ", " << b;
+      }
+    }
+    for (uint32_t d = 0; d < 9; ++d) {
+      const double x = l->Sample(3, n - 1, d);
+      EXPECT_TRUE(x >= 0.0 && x < 1.0) << "N=" << n << " d=" << d;
+    }
+  }
+  EXPECT_EQ(JointLattice::Create(16, 9, 1)->dimensions(), 4u);
+  EXPECT_EQ(JointLattice::Create(64, 9, 1)->dimensions(), 5u);
+  for (uint32_t n : {128u, 256u, 1024u}) EXPECT_EQ(JointLattice::Create(n, 9, 1)->dimensions(), 9u) << n;
+  // A folded dimension past the lattice's end is padded, not refused.
+  auto folded = JointLattice::Create(16, 5, 1, {1, 1, 1, 1, 4});
+  ASSERT_TRUE(folded.ok());
+  EXPECT_EQ(folded->dimensions(), 4u);
+}
+
 TEST(JointLattice, DeterministicInSeedPixelSampleAndDimension) {
   auto a = JointLattice::Create(256, 3, 42), b = JointLattice::Create(256, 3, 42), c = JointLattice::Create(256, 3, 43);
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
