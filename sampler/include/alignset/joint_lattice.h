@@ -50,10 +50,6 @@ namespace alignset {
 inline constexpr double kJointLatticeWeightDecay = 0.7;
 inline constexpr double kJointLatticePairSlack = 0.8;
 inline constexpr double kJointLatticePairFloor = 0.3;
-// A dimension whose best component would leave a pair below this spacing
-// (its points on a few lines) is not a lattice dimension: the lattice stops
-// there and that dimension and the later ones are padded.
-inline constexpr double kJointLatticeMinSpacing = 0.15;
 inline constexpr uint32_t kJointLatticeMaxDimensions = 16;
 
 class JointLattice {
@@ -68,8 +64,9 @@ class JointLattice {
 
   uint32_t n() const { return n_; }
   // The lattice's dimensions: those asked for, or fewer where a small N has
-  // no good component left (kJointLatticeMinSpacing; 4 of 9 at N = 16, 5 at
-  // 64, every one from 128 on for pbrt's nine). Sample pads the rest.
+  // no component left but a repeat of an earlier one or its mirror (pbrt's
+  // nine: 4 at N = 16, 8 at 32, all nine at 64 and from 128 on). Sample pads
+  // the rest.
   uint32_t dimensions() const { return static_cast<uint32_t>(z_.size()); }
   const std::vector<uint32_t>& generator() const { return z_; }
 
