@@ -4,6 +4,7 @@
 // (other points, other crossings) too. Counted by replacing the global
 // operator new in this test binary.
 #include <alignset/aligned_sampler.h>
+#include <alignset/joint_lattice.h>
 
 #include <gtest/gtest.h>
 
@@ -160,6 +161,24 @@ TEST(SamplerHotPath, NoAllocationPerPixelOnASharedDomain) {
   o.image_width = 14;
   o.domain = PixelDomain::kShared;
   ExpectNoAllocationsAfterWarmUp(o, true);
+}
+
+TEST(SamplerHotPath, TheJointLatticeAllocatesNothingAfterCreate) {
+  // pbrt's nine dimensions and a folded wavelength, at a lattice that keeps
+  // all nine (256) and one that pads past four (16): whole frames of every
+  // sample's every dimension, padding included.
+  for (uint32_t n : {16u, 256u}) {
+    auto l = JointLattice::Create(n, 9, 5, {1, 1, 1, 1, 4});
+    ASSERT_TRUE(l.ok());
+    volatile double sink = 0.0;
+    const uint64_t before = g_allocations.load();
+    for (uint64_t pixel = 0; pixel < 64 * 64; ++pixel) {
+      for (uint32_t i = 0; i < n; ++i) {
+        for (uint32_t d = 0; d < 24; ++d) sink = sink + l->Sample(pixel, i, d);
+      }
+    }
+    EXPECT_EQ(g_allocations.load() - before, 0u) << "N=" << n;
+  }
 }
 
 }  // namespace
