@@ -1,0 +1,401 @@
+#!/usr/bin/python3
+"""A sampler in pbrt-v4 against pbrt's best, at equal samples and at equal
+time: the joint lattice (the "aligned" sampler with align "joint") and any
+other sampler named, against zsobol (pbrt's default) and sobol (pbrt's best
+on the edge pixels measured so far), on the scenes of
+integrations/pbrt-v4/scenes with direct lighting and with "path" at depth 5.
+
+  /usr/bin/python3 bench/pbrt_equal_time.py --pbrt build/pbrt-v4/bin/pbrt \
+      --out bench/results/pbrt_joint
+
+The error is relative: per pixel, the squared difference from the reference
+over (reference^2 + 0.01^2), averaged over RGB; then averaged over the edge
+pixels (or every pixel) with the largest 0.1% of pixel errors trimmed
+(fireflies) and emitter pixels left out. Edge pixels are read off the
+reference alone (a jump to a neighbour above --edge-tau of the 99th
+percentile luminance); emitter pixels are those of the reference brighter
+than a quarter of its brightest where that pixel stands out over 10 times
+the 90th percentile (a light seen directly). The reference is pbrt's zsobol
+at --ref-factor times the highest spp measured, under a seed no measured
+render uses, kept in --ref-cache (keyed by the scene's text, resolution and
+spp) for the next run. Equal time: each baseline's error at the subject's median
+wall-clock time, interpolated in log-log between the baseline's measured
+spp (extrapolated along its last segment, marked *, beyond them).
+
+It runs pbrt's binary and reads the PFM images it writes; it shares no code
+with the samplers it measures.
+"""
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pbrt_samplers import loglog_at, luminance, neighbour_jump, read_pfm  # noqa: E402
+
+BASELINES = ["zsobol", "sobol"]
+# The measured samplers: pbrt's name and parameters.
+SAMPLERS = {
+    "zsobol": ("zsobol", {}),
+    "sobol": ("sobol", {}),
+    "paddedsobol": ("paddedsobol", {}),
+    "joint": ("aligned", {"align": "joint"}),
+    # The joint lattice over the film and the light sample only (the rest padded).
+    "joint-film-light": ("aligned", {"align": "joint", "jointdimensions": [5, 6]}),
+    # Over the film and the wavelength only.
+    "joint-film-wavelength": ("aligned", {"align": "joint", "jointdimensions": [0]}),
+    # Over the film, the light sample and the wavelength (the BSDF's and the
+    # light choice's dimensions padded).
+    "joint-light-wavelength": ("aligned", {"align": "joint", "jointdimensions": [5, 6, 0]}),
+}
+SCENES = ["soft_shadows", "silhouettes", "thin_texture", "cornell_box", "room_sphere_light", "room_rect_light"]
+MODES = ["direct", "path5"]
+
+
+def scene_text(path, mode):
+    """The scene without its Sampler, PixelFilter and Film lines (the driver
+    writes them), its integrator set by the mode: "direct" keeps the scene's
+    own unless it has none (then path at depth 1), "path5" is path at depth 5."""
+    out, integrator = [], None
+    with open(path) as f:
+        for line in f:
+            if re.match(r"\s*(Sampler|PixelFilter|Film)\b", line):
+                continue
+            if re.match(r"\s*Integrator\b", line):
+                integrator = line
+                continue
+            out.append(line)
+    if mode == "path5":
+        integrator = 'Integrator "path" "integer maxdepth" [ 5 ]\n'
+    elif integrator is None:
+        integrator = 'Integrator "path" "integer maxdepth" [ 1 ]\n'
+    return integrator + "".join(out)
+
+
+def param_text(params):
+    s = ""
+    for k, v in params.items():
+        if isinstance(v, bool):
+            s += f' "bool {k}" [ {str(v).lower()} ]'
+        elif isinstance(v, int):
+            s += f' "integer {k}" [ {v} ]'
+        elif isinstance(v, list):
+            s += f' "integer {k}" [ {" ".join(str(x) for x in v)} ]'
+        else:
+            s += f' "string {k}" [ "{v}" ]'
+    return s
+
+
+class Renderer:
+    def __init__(self, pbrt, res, work, threads, table):
+        self.pbrt, self.res, self.work, self.threads, self.table = pbrt, res, work, threads, table
+        self.count = 0
+
+    def render(self, text, sampler, spp, seed):
+        name, params = SAMPLERS[sampler]
+        params = dict(params)
+        if name == "aligned" and params.get("align") != "joint":
+            params["table"] = self.table
+        self.count += 1
+        out = os.path.join(self.work, f"r{self.count}.pfm")
+        wrapper = os.path.join(self.work, f"r{self.count}.pbrt")
+        with open(wrapper, "w") as f:
+            f.write(f'Sampler "{name}"{param_text(params)}\nPixelFilter "gaussian"\n'
+                    f'Film "rgb" "integer xresolution" [ {self.res} ] "integer yresolution" [ {self.res} ] '
+                    f'"string filename" [ "{out}" ]\n' + text)
+        t0 = time.monotonic()
+        p = subprocess.run([self.pbrt, "--quiet", "--nthreads", str(self.threads), "--spp", str(spp),
+                            "--seed", str(seed), wrapper], capture_output=True, text=True)
+        seconds = time.monotonic() - t0
+        if p.returncode != 0:
+            raise RuntimeError(f"pbrt failed on {sampler} {spp} spp seed {seed}: {p.stderr.strip()[-800:]}")
+        img = read_pfm(out)
+        os.remove(out)
+        os.remove(wrapper)
+        return img, seconds
+
+
+def masks(ref, tau):
+    y = luminance(ref)
+    emitter = np.zeros(y.shape, dtype=bool)
+    if y.max() > 10 * max(np.percentile(y, 90), 1e-9):
+        emitter = y > 0.25 * y.max()
+        # A light's rim too: its neighbours straddle the light and what lies behind it.
+        emitter = (neighbour_jump(emitter.astype(float)) > 0) | emitter
+    # The jump's scale from the lit scene, not the light: a light seen over 1%
+    # of the image would set it and leave only the light's surroundings.
+    edge = neighbour_jump(y) > tau * np.percentile(y[~emitter], 99)
+    return edge & ~emitter, ~emitter
+
+
+def rel_error(img, ref):
+    return (((img - ref) ** 2) / (ref ** 2 + 1e-4)).mean(axis=2)
+
+
+def trimmed_mean(values, trim=0.001):
+    v = np.sort(values.ravel())
+    keep = len(v) - int(math.floor(trim * len(v)))
+    return float(v[:keep].mean())
+
+
+def measure(r, scene_dir, scene, mode, args, log):
+    text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
+    ref_spp = args.ref_spp or args.ref_factor * max(args.spp)
+    key = hashlib.sha256(f"{text}|{args.res}|{ref_spp}".encode()).hexdigest()[:16]
+    cached = os.path.join(args.ref_cache, f"{scene}_{mode}_{key}.npz") if args.ref_cache else None
+    if cached and os.path.exists(cached):
+        with np.load(cached) as z:
+            ref, ref_seconds = z["image"], float(z["seconds"])
+        log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp, from {cached}")
+    else:
+        log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp")
+        ref, ref_seconds = r.render(text, "zsobol", ref_spp, 900001)
+        if cached:
+            os.makedirs(args.ref_cache, exist_ok=True)
+            np.savez(cached + ".tmp.npz", image=ref, seconds=ref_seconds)
+            os.replace(cached + ".tmp.npz", cached)
+    edge_mask, image_mask = masks(ref, args.edge_tau)
+    result = {"scene": scene, "mode": mode, "res": args.res, "ref_spp": ref_spp,
+              "ref_seconds": ref_seconds, "edge_pixels": int(edge_mask.sum()),
+              "emitter_pixels": int((~image_mask).sum()), "pixels": int(image_mask.size), "runs": []}
+    images = {"reference": ref, "edge": edge_mask}
+    for spp in args.spp:
+        # Seed by seed, every sampler in turn: a drift in the machine's speed
+        # (shared, noisy) falls on every sampler alike.
+        per = {sampler: ([], [], []) for sampler in args.samplers}
+        for k in range(args.seeds):
+            for sampler in args.samplers:
+                img, s = r.render(text, sampler, spp, 1 + k)
+                e = rel_error(img, ref)
+                edge, whole, secs = per[sampler]
+                edge.append(trimmed_mean(e[edge_mask]))
+                whole.append(trimmed_mean(e[image_mask]))
+                secs.append(s)
+                if k == 0 and spp == args.image_spp:
+                    images[f"{sampler}@{spp}"] = img
+        for sampler in args.samplers:
+            edge, whole, secs = per[sampler]
+            n = args.seeds
+            run = {"sampler": sampler, "spp": spp, "seeds": n,
+                   "edge": float(np.mean(edge)), "edge_se": float(np.std(edge, ddof=1) / math.sqrt(n)),
+                   "all": float(np.mean(whole)), "all_se": float(np.std(whole, ddof=1) / math.sqrt(n)),
+                   "seconds": float(np.median(secs))}
+            result["runs"].append(run)
+            log(f"  {sampler:>22} {spp:>5} spp: edge {run['edge']:.3e} +- {run['edge_se']:.1e}  "
+                f"all {run['all']:.3e} +- {run['all_se']:.1e}  {run['seconds']:.2f} s")
+    return result, images
+
+
+def equal_time(runs, baseline, seconds, region):
+    pts = sorted((x["seconds"], x[region]) for x in runs if x["sampler"] == baseline)
+    return loglog_at([t for t, _ in pts], [e for _, e in pts], seconds)
+
+
+def table(result, subject):
+    runs = result["runs"]
+    by = {(x["sampler"], x["spp"]): x for x in runs}
+    spps = sorted({x["spp"] for x in runs})
+    samplers = list(dict.fromkeys(x["sampler"] for x in runs))
+    lines = [f"### {result['scene']}, {result['mode']}", "",
+             f"{result['res']}² pixels, {result['edge_pixels']} edge pixels, {result['emitter_pixels']} emitter "
+             f"pixels left out; reference zsobol at {result['ref_spp']} spp ({result['ref_seconds']:.0f} s).", ""]
+    for region, name in (("edge", "Edge pixels"), ("all", "Whole image")):
+        lines += [f"{name}: relative MSE (mean over seeds ± its standard error); in brackets the ratio to "
+                  f"{subject}'s at the same spp (> 1: {subject} lower).", "",
+                  "| sampler | " + " | ".join(f"{s} spp" for s in spps) + " |", "|---|" + "---:|" * len(spps)]
+        for s in samplers:
+            cells = []
+            for spp in spps:
+                x, a = by.get((s, spp)), by.get((subject, spp))
+                if not x:
+                    cells.append("n/a")
+                    continue
+                ratio = f" ({x[region] / a[region]:.2f}×)" if a and s != subject else ""
+                cells.append(f"{x[region]:.2e} ± {x[region + '_se']:.0e}{ratio}")
+            lines.append(f"| {s} | " + " | ".join(cells) + " |")
+        lines.append("")
+    lines += [f"Equal time: each baseline's relative MSE at {subject}'s wall-clock time over {subject}'s "
+              f"(> 1: {subject} lower; * extrapolated), and its time over zsobol's at the same spp.", "",
+              "| spp | time / zsobol's | edge: zsobol | edge: sobol | edge: better of the two | image: zsobol | "
+              "image: sobol |", "|---:|---:|---:|---:|---:|---:|---:|"]
+    for spp in spps:
+        a, z = by.get((subject, spp)), by.get(("zsobol", spp))
+        if not a or not z:
+            continue
+        cells, best = [], None
+        for region in ("edge", "all"):
+            for b in BASELINES:
+                v, extra = equal_time(runs, b, a["seconds"], region)
+                if v is None:
+                    cells.append("–")
+                    continue
+                cells.append(f"{v / a[region]:.2f}{'*' if extra else ''}")
+                if region == "edge":
+                    best = v / a[region] if best is None else min(best, v / a[region])
+            if region == "edge":
+                cells.append(f"**{best:.2f}**" if best is not None else "–")
+        lines.append(f"| {spp} | {a['seconds'] / z['seconds']:.2f} | " + " | ".join(cells) + " |")
+    lines.append("")
+    return "\n".join(lines)
+
+
+def summary(out, subject):
+    """One row a scene and mode from every table in `out`: the subject against
+    the better of zsobol and sobol, at equal samples and at equal time."""
+    results = []
+    for name in sorted(os.listdir(out)):
+        if name.endswith(".json") and name != "summary.json":
+            with open(os.path.join(out, name)) as f:
+                results.append(json.load(f))
+    spps = sorted({x["spp"] for r in results for x in r["runs"] if x["sampler"] == subject})
+    head = ", ".join(str(s) for s in spps)
+    lines = ["# The joint lattice in pbrt-v4: summary", "",
+             f"The better of zsobol's and sobol's relative MSE over {subject}'s (> 1: {subject} lower), on edge "
+             f"pixels and on the whole image, at equal samples and at equal time (* extrapolated beyond the "
+             f"baseline's measured spp); the last column {subject}'s frame time over zsobol's at "
+             f"{spps[-1]} spp. Every number's table, with standard errors: the scene's .md beside this file.", "",
+             f"| scene | mode | edge, equal spp (at {head} spp) | edge, equal time | image, equal spp | image, equal time "
+             f"| time / zsobol's |", "|---|---|---|---|---|---|---:|"]
+    for r in results:
+        by = {(x["sampler"], x["spp"]): x for x in r["runs"]}
+        cols = {k: [] for k in ("edge_spp", "edge_time", "all_spp", "all_time")}
+        for spp in spps:
+            a = by.get((subject, spp))
+            for region in ("edge", "all"):
+                if not a:
+                    cols[region + "_spp"].append("–")
+                    cols[region + "_time"].append("–")
+                    continue
+                same = [by[(b, spp)][region] for b in BASELINES if (b, spp) in by]
+                cols[region + "_spp"].append(f"{min(same) / a[region]:.2f}" if same else "–")
+                timed = [equal_time(r["runs"], b, a["seconds"], region) for b in BASELINES]
+                timed = [(v, extra) for v, extra in timed if v is not None]
+                if timed:
+                    v, extra = min(timed)
+                    cols[region + "_time"].append(f"{v / a[region]:.2f}{'*' if extra else ''}")
+                else:
+                    cols[region + "_time"].append("–")
+        last = spps[-1]
+        a, z = by.get((subject, last)), by.get(("zsobol", last))
+        t = f"{a['seconds'] / z['seconds']:.2f}" if a and z else "–"
+        lines.append(f"| {r['scene']} | {r['mode']} | " + " | ".join(", ".join(cols[k]) for k in cols) + f" | {t} |")
+    lines.append("")
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write("\n".join(lines))
+
+
+def figure(result, images, path, spp, samplers):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    def tonemap(img):
+        return np.clip(img / max(np.percentile(img, 99.5), 1e-9), 0, 1) ** (1 / 2.2)
+
+    ref = images["reference"]
+    shown = [s for s in samplers if f"{s}@{spp}" in images]
+    errs = {s: rel_error(images[f"{s}@{spp}"], ref) for s in shown}
+    vmax = max((np.percentile(e, 99.5) for e in errs.values()), default=1.0)
+    fig, axes = plt.subplots(2, len(shown) + 1, figsize=(2.5 * (len(shown) + 1), 5.2))
+    axes[0][0].imshow(tonemap(ref))
+    axes[0][0].set_title("reference", fontsize=8)
+    axes[1][0].imshow(images["edge"], cmap="gray", interpolation="nearest")
+    axes[1][0].set_title("edge pixels", fontsize=8)
+    for k, s in enumerate(shown, 1):
+        axes[0][k].imshow(tonemap(images[f"{s}@{spp}"]))
+        axes[0][k].set_title(f"{s}, {spp} spp", fontsize=8)
+        axes[1][k].imshow(errs[s], cmap="magma", vmin=0, vmax=vmax, interpolation="nearest")
+        axes[1][k].set_title(f"{s} relative error", fontsize=8)
+    for ax in axes.ravel():
+        ax.axis("off")
+    fig.suptitle(f"{result['scene']}, {result['mode']} (error maps on one scale)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--pbrt", default="build/pbrt-v4/bin/pbrt")
+    ap.add_argument("--table", default="build/pbrt-v4/lattice.tbl", help="for the table-reading aligned modes")
+    ap.add_argument("--scenes", default=os.path.join(os.path.dirname(__file__), "..", "integrations", "pbrt-v4", "scenes"))
+    ap.add_argument("--out", default="bench/results/pbrt_joint")
+    ap.add_argument("--variants", default=",".join(f"{s}:{m}" for s in SCENES for m in MODES),
+                    help="scene:mode,... (mode: direct or path5)")
+    ap.add_argument("--samplers", default="zsobol,sobol,joint")
+    ap.add_argument("--subject", default="joint")
+    ap.add_argument("--spp", default="16,64,256,1024")
+    ap.add_argument("--seeds", type=int, default=3)
+    ap.add_argument("--res", type=int, default=160)
+    ap.add_argument("--ref-factor", type=int, default=16)
+    ap.add_argument("--ref-spp", type=int, default=0,
+                    help="the reference's spp instead (at least 16x the highest): a rerun of some spp "
+                         "against the references of a larger run")
+    ap.add_argument("--merge", action="store_true",
+                    help="add this run's spp to the tables already in --out (same scenes and reference), "
+                         "replacing what they had at those spp")
+    ap.add_argument("--edge-tau", type=float, default=0.03)
+    ap.add_argument("--ref-cache", default="build/pbrt-v4/references",
+                    help="keeps each reference, keyed by the scene's text, resolution and spp ('' for none)")
+    ap.add_argument("--image-spp", type=int, default=256)
+    ap.add_argument("--summary-only", action="store_true", help="rewrite summary.md from the tables in --out")
+    ap.add_argument("--threads", type=int, default=os.cpu_count() or 2)
+    args = ap.parse_args()
+    args.spp = [int(x) for x in args.spp.split(",")]
+    args.samplers = args.samplers.split(",")
+    for s in args.samplers:
+        if s not in SAMPLERS:
+            ap.error(f"unknown sampler {s}; known: {', '.join(SAMPLERS)}")
+    if args.ref_spp and args.ref_spp < 16 * max(args.spp):
+        ap.error("--ref-spp must be at least 16 times the highest --spp")
+    if args.seeds < 2:
+        ap.error("--seeds must be at least 2 (a standard error needs two)")
+    os.makedirs(args.out, exist_ok=True)
+    if args.summary_only:
+        summary(args.out, args.subject)
+        return 0
+    t0 = time.monotonic()
+
+    def log(msg):
+        print(f"[{time.monotonic() - t0:7.0f} s] {msg}", flush=True)
+
+    with tempfile.TemporaryDirectory() as work:
+        r = Renderer(os.path.abspath(args.pbrt), args.res, work, args.threads, os.path.abspath(args.table))
+        for v in args.variants.split(","):
+            scene, mode = (v.split(":") + ["direct"])[:2]
+            if mode not in MODES:
+                ap.error(f"mode {mode} of {v}: one of {', '.join(MODES)}")
+            result, images = measure(r, os.path.abspath(args.scenes), scene, mode, args, log)
+            name = f"{scene}_{mode}"
+            old = os.path.join(args.out, name + ".json")
+            if args.merge and os.path.exists(old):
+                with open(old) as f:
+                    before = json.load(f)
+                if before["ref_spp"] != result["ref_spp"] or before["edge_pixels"] != result["edge_pixels"]:
+                    raise RuntimeError(f"{old}: another reference; --merge needs the same (--ref-spp {before['ref_spp']})")
+                result["runs"] = sorted([x for x in before["runs"] if x["spp"] not in args.spp] + result["runs"],
+                                        key=lambda x: (x["spp"], args.samplers.index(x["sampler"])
+                                                       if x["sampler"] in args.samplers else 99))
+            with open(os.path.join(args.out, name + ".json"), "w") as f:
+                json.dump(result, f, indent=1)
+            with open(os.path.join(args.out, name + ".md"), "w") as f:
+                f.write(table(result, args.subject) + "\n")
+            if not (args.merge and args.image_spp not in args.spp):
+                figure(result, images, os.path.join(args.out, name + ".png"), args.image_spp, args.samplers)
+            log(f"{name}: wrote {args.out}/{name}.{{json,md,png}}")
+    summary(args.out, args.subject)
+    log(f"wrote {args.out}/summary.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
