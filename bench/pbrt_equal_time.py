@@ -389,9 +389,11 @@ def main():
                 json.dump(result, f, indent=1)
             with open(os.path.join(args.out, name + ".md"), "w") as f:
                 f.write(table(result, args.subject) + "\n")
-            if not (args.merge and args.image_spp not in args.spp):
+            wrote = "json,md"
+            if not (args.merge and args.image_spp not in args.spp):  # a merge at other spp keeps the figure
                 figure(result, images, os.path.join(args.out, name + ".png"), args.image_spp, args.samplers)
-            log(f"{name}: wrote {args.out}/{name}.{{json,md,png}}")
+                wrote += ",png"
+            log(f"{name}: wrote {args.out}/{name}.{{{wrote}}}")
     summary(args.out, args.subject)
     log(f"wrote {args.out}/summary.md")
     return 0
