@@ -69,6 +69,43 @@ class Pbrt:
         return img
 
 
+class Reference:
+    """A scene's reference: two zsobol halves of 16384 spp under seeds no
+    measured render uses, their mean's luminance, jumps and edge pixels."""
+
+    def __init__(self, pbrt):
+        self.a = pbrt.image('Sampler "zsobol"', 16384, 9001)
+        self.b = pbrt.image('Sampler "zsobol"', 16384, 9002)
+        self.image = 0.5 * (self.a + self.b)
+        self.y = luminance(self.image)
+        self.jump = neighbour_jump(self.y)
+        self.edge = self.jump > 0.03 * np.percentile(self.y, 99)
+
+    def mixed(self):
+        """Edge pixels with an edge through them (a value between the two
+        sides'), not a black shadow beside a lit one."""
+        p99 = np.percentile(self.y, 99)
+        return self.edge & (self.y > 0.2 * p99) & (self.y < 0.8 * p99)
+
+    def largest_deviation(self, means, label):
+        """Over the four mixed pixels of the largest jumps: the largest
+        |mean over seeds - reference| in standard errors (the seeds' and the
+        reference's own, from its two halves)."""
+        seeds = len(means)
+        order = np.argsort(np.where(self.mixed(), self.jump, -1).ravel())[::-1][:4]
+        worst = 0.0
+        for flat in order:
+            py, px = divmod(int(flat), self.y.shape[1])
+            vals = means[:, py, px]
+            se = vals.std(ddof=1) / np.sqrt(seeds)
+            ref_se = abs(float(luminance(self.a[py, px] - self.b[py, px]))) / 2.0
+            z = abs(vals.mean() - float(self.y[py, px])) / np.sqrt(se ** 2 + ref_se ** 2 + 1e-30)
+            print(f"{label}, pixel ({px}, {py}): mean {vals.mean():.5f}, reference {float(self.y[py, px]):.5f}, "
+                  f"{z:.2f} standard errors")
+            worst = max(worst, float(z))
+        return worst
+
+
 def main():
     if len(sys.argv) != 4:
         print(__doc__)
@@ -93,12 +130,8 @@ def main():
         zsobol = 'Sampler "zsobol"'
 
         # The reference: two halves under seeds no measured render uses.
-        ref_a = pbrt.image(zsobol, 16384, 9001)
-        ref_b = pbrt.image(zsobol, 16384, 9002)
-        ref = 0.5 * (ref_a + ref_b)
-        y = luminance(ref)
-        jump = neighbour_jump(y)
-        edge = jump > 0.03 * np.percentile(y, 99)
+        r = Reference(pbrt)
+        ref, edge = r.image, r.edge
         print(f"edge pixels: {int(edge.sum())} of {edge.size}")
         check(edge.sum() >= 40, f"the scene has edge pixels to judge ({int(edge.sum())} >= 40)")
 
@@ -109,21 +142,8 @@ def main():
         # The seeds are fixed, so the test is deterministic for a build.
         seeds = 48
         means = np.array([luminance(pbrt.image(aligned, 64, s)) for s in range(1, seeds + 1)])
-        # Mixed pixels: an edge through them (a value between the two sides'),
-        # not a black shadow beside a lit one.
-        mixed = edge & (y > 0.2 * np.percentile(y, 99)) & (y < 0.8 * np.percentile(y, 99))
-        check(mixed.sum() >= 4, f"the scene has mixed edge pixels ({int(mixed.sum())} >= 4)")
-        order = np.argsort(np.where(mixed, jump, -1).ravel())[::-1][:4]
-        worst = 0.0
-        for flat in order:
-            py, px = divmod(int(flat), 24)
-            vals = means[:, py, px]
-            se = vals.std(ddof=1) / np.sqrt(seeds)
-            ref_se = abs(float(luminance(ref_a[py, px] - ref_b[py, px]))) / 2.0
-            z = abs(vals.mean() - float(y[py, px])) / np.sqrt(se ** 2 + ref_se ** 2 + 1e-30)
-            print(f"pixel ({px}, {py}): mean {vals.mean():.5f}, reference {float(y[py, px]):.5f}, "
-                  f"{z:.2f} standard errors")
-            worst = max(worst, float(z))
+        check(r.mixed().sum() >= 4, f"the scene has mixed edge pixels ({int(r.mixed().sum())} >= 4)")
+        worst = r.largest_deviation(means, "aligned")
         check(worst < 3.0, f"aligned's mean over {seeds} seeds within 3 standard errors of the reference "
                            f"on 4 edge pixels (largest {worst:.2f})")
 
@@ -159,28 +179,14 @@ def main():
         # 4-6. The joint lattice on the penumbra scene.
         pen = Pbrt(pbrt_bin, work, PENUMBRA)
         joint = 'Sampler "aligned" "string align" [ "joint" ]'
-        ref_a = pen.image(zsobol, 16384, 9001)
-        ref_b = pen.image(zsobol, 16384, 9002)
-        ref = 0.5 * (ref_a + ref_b)
-        y = luminance(ref)
-        jump = neighbour_jump(y)
-        edge = jump > 0.03 * np.percentile(y, 99)
+        r = Reference(pen)
+        ref, edge = r.image, r.edge
         print(f"penumbra scene: edge pixels: {int(edge.sum())} of {edge.size}")
         check(edge.sum() >= 200, f"the penumbra scene has edge pixels to judge ({int(edge.sum())} >= 200)")
         seeds = 48
         means = np.array([luminance(pen.image(joint, 64, s)) for s in range(1, seeds + 1)])
-        mixed = edge & (y > 0.2 * np.percentile(y, 99)) & (y < 0.8 * np.percentile(y, 99))
-        order = np.argsort(np.where(mixed, jump, -1).ravel())[::-1][:4]
-        worst = 0.0
-        for flat in order:
-            py, px = divmod(int(flat), 24)
-            vals = means[:, py, px]
-            se = vals.std(ddof=1) / np.sqrt(seeds)
-            ref_se = abs(float(luminance(ref_a[py, px] - ref_b[py, px]))) / 2.0
-            z = abs(vals.mean() - float(y[py, px])) / np.sqrt(se ** 2 + ref_se ** 2 + 1e-30)
-            print(f"joint, pixel ({px}, {py}): mean {vals.mean():.5f}, reference {float(y[py, px]):.5f}, "
-                  f"{z:.2f} standard errors")
-            worst = max(worst, float(z))
+        check(r.mixed().sum() >= 4, f"the penumbra scene has mixed edge pixels ({int(r.mixed().sum())} >= 4)")
+        worst = r.largest_deviation(means, "joint")
         check(worst < 3.0, f"joint's mean over {seeds} seeds within 3 standard errors of the reference "
                            f"on 4 penumbra pixels (largest {worst:.2f})")
 
