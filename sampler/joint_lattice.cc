@@ -5,10 +5,9 @@
 #include <numbers>
 #include <numeric>
 #include <string>
-#include <tuple>
-#include <utility>
 
 #include "core/sampling/owen_sobol.h"
+#include "core/sampling/rank1_lattice.h"
 #include "core/util/hash.h"
 
 namespace alignset {
@@ -24,16 +23,6 @@ constexpr uint32_t kMaxFold = 64;
 double Kernel(double x) { return 2.0 * std::numbers::pi * std::numbers::pi * (x * x - x + 1.0 / 6.0); }
 
 double Weight(size_t j) { return std::pow(kJointLatticeWeightDecay, static_cast<double>(j)); }
-
-uint64_t InverseMod(uint64_t a, uint64_t n) {
-  int64_t t = 0, nt = 1, r = static_cast<int64_t>(n), nr = static_cast<int64_t>(a % n);
-  while (nr != 0) {
-    const int64_t q = r / nr;
-    std::tie(t, nt) = std::make_pair(nt, t - q * nt);
-    std::tie(r, nr) = std::make_pair(nr, r - q * nr);
-  }
-  return static_cast<uint64_t>((t % static_cast<int64_t>(n) + static_cast<int64_t>(n)) % static_cast<int64_t>(n));
-}
 
 double Unit(uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
 
@@ -53,21 +42,12 @@ double JointLatticeP2(uint32_t n, const std::vector<uint32_t>& z) {
 }
 
 double JointLatticePairSpacing(uint32_t n, uint32_t a, uint32_t b) {
-  // The dual lattice {h : h_0 a + h_1 b = 0 (mod N)} has the basis (N, 0),
-  // (-b a^-1 mod N, 1) and determinant N; Lagrange-Gauss reduction gives its
-  // shortest vector. Normalized by the Hermite bound (2 / sqrt 3) N.
-  const double c = static_cast<double>((n - (static_cast<uint64_t>(b) * InverseMod(a, n)) % n) % n);
-  double u[2] = {static_cast<double>(n), 0.0}, v[2] = {c, 1.0};
-  auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1]; };
-  if (dot(u, u) < dot(v, v)) std::swap(u, v);
-  while (true) {
-    const double m = std::round(dot(u, v) / dot(v, v));
-    u[0] -= m * v[0];
-    u[1] -= m * v[1];
-    if (dot(u, u) >= dot(v, v)) break;
-    std::swap(u, v);
-  }
-  return dot(v, v) * std::sqrt(3.0) / (2.0 * n);
+  // The dual lattice {h : h_0 a + h_1 b = 0 (mod N)} is, axes swapped, the
+  // rank-1 lattice of generator -b a^-1 (mod N), whose shortest vector has
+  // the length of its mirror's, b a^-1: core's Lagrange-Gauss reduction.
+  const uint32_t g = static_cast<uint32_t>((static_cast<uint64_t>(b) * Rank1InverseMod(a, n)) % n);
+  const double shortest = Rank1MinDistanceTimesN(n, g);
+  return shortest * shortest * std::sqrt(3.0) / (2.0 * n);
 }
 
 StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uint64_t seed,
@@ -100,12 +80,12 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
   // least kJointLatticePairFloor, or kJointLatticePairSlack of the best
   // candidate's where that is less. Then, among those, the least weighted
   // P_2 (all projections, higher orders included). P_2 alone let the light
-  // square of N = 64 fall onto 3 lines (0.08; measured in pbrt: 1.8x more edge
-  // error than zsobol at 64 spp, 3x more than with the floor). A tighter
-  // first stage (the best pairs within 0.8) cost 1.3-1.5x at 256 spp: it
-  // leaves P_2 too few candidates for the projections of three and more. prod[k] holds the
-  // product over the chosen components at point k, so each candidate's P_2
-  // costs one pass over the points.
+  // square of N = 64 fall onto 3 lines (0.08; measured in pbrt: 1.8x more
+  // edge error than zsobol at 64 spp, 3x more than with the floor). A
+  // tighter first stage (the best pairs within 0.8) cost 1.3-1.5x at 256
+  // spp: it leaves P_2 too few candidates for the projections of three and
+  // more. prod[k] holds the product over the chosen components at point k,
+  // so each candidate's P_2 costs one pass over the points.
   std::vector<double> prod(n), kernel(n), spacing;
   std::vector<uint32_t> candidates;
   for (uint32_t k = 0; k < n; ++k) {
@@ -117,7 +97,6 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
     candidates.clear();
     spacing.clear();
     double best_spacing = 0.0;
-    double chosen_spacing = 0.0;
     for (uint32_t c = 1; c <= n / 2; ++c) {  // c and n - c give the same lattice up to a mirror
       if (std::gcd(c, n) != 1) continue;
       double worst = INFINITY;
@@ -128,10 +107,11 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
       spacing.push_back(worst);
       best_spacing = std::max(best_spacing, worst);
     }
+    const double bar = std::min(kJointLatticePairFloor, kJointLatticePairSlack * best_spacing);
     uint32_t best = 1;
     double best_sum = INFINITY;
     for (size_t m = 0; m < candidates.size(); ++m) {
-      if (spacing[m] + 1e-9 < std::min(kJointLatticePairFloor, kJointLatticePairSlack * best_spacing)) continue;  // ties in, on every platform
+      if (spacing[m] + 1e-9 < bar) continue;  // ties in, on every platform
       const uint32_t c = candidates[m];
       double sum = 0.0;
       uint64_t r = 0;
@@ -142,16 +122,15 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
       if (sum < best_sum) {
         best_sum = sum;
         best = c;
-        chosen_spacing = spacing[m];
       }
     }
     // No component left but a repeat of an earlier one, or its mirror (N = 16
-    // has four candidates): the two coordinates would be one up to the shift
-    // (a dual vector (1, +-1), squared length 2), so this dimension and the
-    // rest are padded, which pairs them at random. A merely poor pair stays:
-    // stopping at spacing 0.15 (N = 64 at six of pbrt's nine) cost 0.83-0.92x
-    // zsobol's whole-image error with path at 64 spp, against 1.04-1.10x.
-    if (chosen_spacing * 2.0 * n / std::sqrt(3.0) < 2.5) break;
+    // has four candidates): the two coordinates would be one up to the shift,
+    // so this dimension and the rest are padded, which pairs them at random.
+    // A merely poor pair stays: stopping at spacing 0.15 (N = 64 at six of
+    // pbrt's nine) cost 0.83-0.92x zsobol's whole-image error with path at
+    // 64 spp, against 1.04-1.10x.
+    if (std::any_of(l.z_.begin(), l.z_.end(), [&](uint32_t a) { return best == a || best == n - a; })) break;
     l.z_.push_back(best);
     for (uint32_t k = 0; k < n; ++k) {
       prod[k] *= 1.0 + w * kernel[static_cast<uint32_t>((static_cast<uint64_t>(k) * best) % n)];

@@ -8,29 +8,16 @@
 #include <utility>
 #include <vector>
 
+#include "core/sampling/rank1_lattice.h"
 #include "core/util/hash.h"
 
 // The points of a chosen lattice and its symmetries: apart from the
 // generator search (aligned_lattice.cc), so that a renderer's sampler links
 // them without the search's spectra and engines.
 namespace alignset {
-namespace {
-
-// Modular inverse of g (coprime to n), by the extended Euclidean algorithm.
-uint32_t InverseMod(uint32_t g, uint32_t n) {
-  int64_t r0 = n, r1 = g % n, t0 = 0, t1 = 1;
-  while (r1 != 0) {
-    const int64_t q = r0 / r1;
-    std::tie(r0, r1) = std::make_pair(r1, r0 - q * r1);
-    std::tie(t0, t1) = std::make_pair(t1, t0 - q * t1);
-  }
-  return static_cast<uint32_t>(((t0 % n) + n) % n);
-}
-
-}  // namespace
 
 uint32_t MapLatticeGenerator(uint32_t n, uint32_t g, bool swap, bool invert_x, bool invert_y) {
-  uint32_t m = swap ? InverseMod(g, n) : g % n;
+  uint32_t m = swap ? Rank1InverseMod(g, n) : g % n;
   if (invert_x) m = (n - m) % n;
   if (invert_y) m = (n - m) % n;
   return m;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 #include "core/util/hash.h"
@@ -47,6 +48,16 @@ bool IsFibonacci(uint32_t n, uint32_t* previous) {
     return true;
   }
   return false;
+}
+
+uint32_t Rank1InverseMod(uint32_t g, uint32_t n) {
+  int64_t r0 = n, r1 = g % n, t0 = 0, t1 = 1;
+  while (r1 != 0) {
+    const int64_t q = r0 / r1;
+    std::tie(r0, r1) = std::make_pair(r1, r0 - q * r1);
+    std::tie(t0, t1) = std::make_pair(t1, t0 - q * t1);
+  }
+  return static_cast<uint32_t>(((t0 % n) + n) % n);
 }
 
 double Rank1MinDistanceTimesN(uint32_t n, uint32_t g) {

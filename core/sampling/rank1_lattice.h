@@ -26,4 +26,8 @@ double Rank1MinDistanceTimesN(uint32_t n, uint32_t g);
 
 bool IsFibonacci(uint32_t n, uint32_t* previous);
 
+// g^-1 mod N for g coprime to N (the extended Euclidean algorithm): the
+// generator of the lattice (1, g) with its axes swapped.
+uint32_t Rank1InverseMod(uint32_t g, uint32_t n);
+
 }  // namespace alignset

@@ -17,10 +17,8 @@
 // among those, the weighted P_2 criterion (the worst-case error of a shifted
 // lattice in the Korobov space of smoothness 2, product weights gamma_j =
 // kJointLatticeWeightDecay^j, j from 0), which sees the higher-order
-// projections too. Every
-// 2-D projection of the leading dimensions (the film, film x light, the
-// light square) is a good 2-D lattice of its own. z_0 = 1, every z_j
-// coprime to N: each 1-D projection is the N strata of [0, 1).
+// projections too. z_0 = 1, every z_j coprime to N: each 1-D projection is
+// the N strata of [0, 1).
 //
 // The API speaks dimensions, as pbrt's samplers do: Sample(pixel, i, d) is
 // dimension d of sample i of a pixel; d >= dimensions() is padded with a 1-D
@@ -80,7 +78,7 @@ class JointLattice {
   uint32_t n_ = 0;
   uint64_t seed_ = 0;
   std::vector<uint32_t> z_;
-  std::vector<uint32_t> folds_;  // one per lattice dimension
+  std::vector<uint32_t> folds_;  // one per dimension asked for (1: not folded)
 };
 
 // The weighted P_2 criterion of the rank-1 lattice of generator z with N
@@ -93,6 +91,5 @@ double JointLatticeP2(uint32_t n, const std::vector<uint32_t>& z);
 // (2 / sqrt 3) N. 1 is the best any N-point 2-D lattice reaches (hexagonal);
 // near 0, the projection's points lie on a few lines.
 double JointLatticePairSpacing(uint32_t n, uint32_t a, uint32_t b);
-
 
 }  // namespace alignset
