@@ -105,6 +105,10 @@ class Reference:
             worst = max(worst, float(z))
         return worst
 
+    def edge_mse(self, images):
+        """The mean over images of each one's MSE on the edge pixels."""
+        return float(np.mean([((img - self.image) ** 2).mean(axis=2)[self.edge].mean() for img in images]))
+
 
 def main():
     if len(sys.argv) != 4:
@@ -131,7 +135,7 @@ def main():
 
         # The reference: two halves under seeds no measured render uses.
         r = Reference(pbrt)
-        ref, edge = r.image, r.edge
+        edge = r.edge
         print(f"edge pixels: {int(edge.sum())} of {edge.size}")
         check(edge.sum() >= 40, f"the scene has edge pixels to judge ({int(edge.sum())} >= 40)")
 
@@ -148,18 +152,16 @@ def main():
                            f"on 4 edge pixels (largest {worst:.2f})")
 
         # 2. Better than zsobol on the edge pixels at 256 spp, every sample counted.
-        def edge_mse(images):
-            return float(np.mean([((img - ref) ** 2).mean(axis=2)[edge].mean() for img in images]))
-        mse_aligned = edge_mse([pbrt.image(aligned, 256, s) for s in range(1, 13)])
-        mse_zsobol = edge_mse([pbrt.image(zsobol, 256, s) for s in range(1, 13)])
+        mse_aligned = r.edge_mse([pbrt.image(aligned, 256, s) for s in range(1, 13)])
+        mse_zsobol = r.edge_mse([pbrt.image(zsobol, 256, s) for s in range(1, 13)])
         print(f"edge-pixel MSE at 256 spp over 12 seeds: aligned {mse_aligned:.3e}, zsobol {mse_zsobol:.3e}, "
               f"ratio {mse_zsobol / mse_aligned:.2f}")
         check(mse_aligned < mse_zsobol, "aligned's edge-pixel MSE below zsobol's at 256 spp")
 
         # 3. Bad input: pbrt's own error (exit status 1), a message naming the
         # problem, no image.
-        def refused(sampler_line, spp, needle, what):
-            p, img = pbrt.run(sampler_line, spp, 1)
+        def refused(sampler_line, spp, needle, what, renderer=pbrt):
+            p, img = renderer.run(sampler_line, spp, 1)
             ok = p.returncode == 1 and img is None and needle in p.stderr
             check(ok, f"{what}: exit {p.returncode}, message names it" + ("" if ok else f": {p.stderr[-400:]!r}"))
 
@@ -180,7 +182,7 @@ def main():
         pen = Pbrt(pbrt_bin, work, PENUMBRA)
         joint = 'Sampler "aligned" "string align" [ "joint" ]'
         r = Reference(pen)
-        ref, edge = r.image, r.edge
+        edge = r.edge
         print(f"penumbra scene: edge pixels: {int(edge.sum())} of {edge.size}")
         check(edge.sum() >= 200, f"the penumbra scene has edge pixels to judge ({int(edge.sum())} >= 200)")
         seeds = 48
@@ -190,8 +192,7 @@ def main():
         check(worst < 3.0, f"joint's mean over {seeds} seeds within 3 standard errors of the reference "
                            f"on 4 penumbra pixels (largest {worst:.2f})")
 
-        mse = {name: float(np.mean([((pen.image(line, 256, s) - ref) ** 2).mean(axis=2)[edge].mean()
-                                    for s in range(1, 13)]))
+        mse = {name: r.edge_mse([pen.image(line, 256, s) for s in range(1, 13)])
                for name, line in (("joint", joint), ("zsobol", zsobol), ("sobol", 'Sampler "sobol"'))}
         print("penumbra edge-pixel MSE at 256 spp over 12 seeds: " +
               ", ".join(f"{k} {v:.3e}" for k, v in mse.items()) +
@@ -199,15 +200,12 @@ def main():
         check(mse["joint"] < mse["zsobol"], "joint's penumbra edge MSE below zsobol's at 256 spp")
         check(mse["joint"] < mse["sobol"], "joint's penumbra edge MSE below sobol's at 256 spp")
 
-        def refused_joint(params, spp, needle, what):
-            p, img = pen.run(joint + params, spp, 1)
-            ok = p.returncode == 1 and img is None and needle in p.stderr
-            check(ok, f"{what}: exit {p.returncode}, message names it" + ("" if ok else f": {p.stderr[-400:]!r}"))
-
-        refused_joint(' "integer jointdimensions" [ 5 99 ]', 64, "99", "a dimension pbrt's sampler cannot serve")
-        refused_joint(' "integer jointdimensions" [ 5 5 ]', 64, "twice", "a dimension listed twice")
-        refused_joint("", 1, "at least 2", "one sample a pixel")
-        refused_joint(' "integer prepasssamples" [ 16 ]', 64, "pre-pass", "a pre-pass asked of joint")
+        for params, spp, needle, what in (
+                (' "integer jointdimensions" [ 5 99 ]', 64, "99", "a dimension pbrt's sampler cannot serve"),
+                (' "integer jointdimensions" [ 5 5 ]', 64, "twice", "a dimension listed twice"),
+                ("", 1, "at least 2", "one sample a pixel"),
+                (' "integer prepasssamples" [ 16 ]', 64, "pre-pass", "a pre-pass asked of joint")):
+            refused(joint + params, spp, needle, what, renderer=pen)
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
