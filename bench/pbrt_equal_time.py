@@ -40,7 +40,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pbrt_samplers import loglog_at, luminance, neighbour_jump, read_pfm  # noqa: E402
+from pbrt_samplers import loglog_at, luminance, neighbour_jump, read_pfm, run_record  # noqa: E402
 
 BASELINES = ["zsobol", "sobol"]
 # The measured samplers: pbrt's name and parameters.
@@ -183,12 +183,7 @@ def measure(r, scene_dir, scene, mode, args, log):
                 if k == 0 and spp == args.image_spp:
                     images[f"{sampler}@{spp}"] = img
         for sampler in args.samplers:
-            edge, whole, secs = per[sampler]
-            n = args.seeds
-            run = {"sampler": sampler, "spp": spp, "seeds": n,
-                   "edge": float(np.mean(edge)), "edge_se": float(np.std(edge, ddof=1) / math.sqrt(n)),
-                   "all": float(np.mean(whole)), "all_se": float(np.std(whole, ddof=1) / math.sqrt(n)),
-                   "seconds": float(np.median(secs))}
+            run = run_record(sampler, spp, *per[sampler])
             result["runs"].append(run)
             log(f"  {sampler:>22} {spp:>5} spp: edge {run['edge']:.3e} +- {run['edge_se']:.1e}  "
                 f"all {run['all']:.3e} +- {run['all_se']:.1e}  {run['seconds']:.2f} s")
@@ -305,7 +300,8 @@ def figure(result, images, path, spp, samplers):
     shown = [s for s in samplers if f"{s}@{spp}" in images]
     errs = {s: rel_error(images[f"{s}@{spp}"], ref) for s in shown}
     vmax = max((np.percentile(e, 99.5) for e in errs.values()), default=1.0)
-    fig, axes = plt.subplots(2, len(shown) + 1, figsize=(2.5 * (len(shown) + 1), 5.2))
+    fig, axes = plt.subplots(2, len(shown) + 1, figsize=(2.5 * (len(shown) + 1), 5.2),
+                             squeeze=False)
     axes[0][0].imshow(tonemap(ref))
     axes[0][0].set_title("reference", fontsize=8)
     axes[1][0].imshow(images["edge"], cmap="gray", interpolation="nearest")

@@ -157,6 +157,16 @@ def pixel_errors(img, ref):
     return ((img - ref) ** 2).mean(axis=2)
 
 
+def run_record(sampler, spp, edge, whole, secs):
+    """A sampler's row at one spp from its per-seed edge and whole-image
+    errors and times: the means, their standard errors, the median time."""
+    n = len(edge)
+    return {"sampler": sampler, "spp": spp, "seeds": n,
+            "edge": float(np.mean(edge)), "edge_se": float(np.std(edge, ddof=1) / math.sqrt(n)),
+            "all": float(np.mean(whole)), "all_se": float(np.std(whole, ddof=1) / math.sqrt(n)),
+            "seconds": float(np.median(secs))}
+
+
 def loglog_at(xs, ys, x):
     """(ys at x, extrapolated): linear in log-log between the measured points
     that bracket x, or along the last (first) segment beyond them."""
@@ -208,10 +218,7 @@ def measure_variant(r, scene_dir, scene, filt, mode, args, log):
             secs.append(s)
             if k == 0 and spp == args.image_spp and sampler in ("zsobol", "aligned"):
                 images[f"{sampler}@{spp}"] = img
-        run = {"sampler": sampler, "spp": spp, "seeds": seeds,
-               "edge": float(np.mean(edge)), "edge_se": float(np.std(edge, ddof=1) / math.sqrt(seeds)),
-               "all": float(np.mean(whole)), "all_se": float(np.std(whole, ddof=1) / math.sqrt(seeds)),
-               "seconds": float(np.median(secs))}
+        run = run_record(sampler, spp, edge, whole, secs)
         result["runs"].append(run)
         log(f"  {sampler:>14} {spp:>5} spp: edge {run['edge']:.3e} +- {run['edge_se']:.1e}  "
             f"all {run['all']:.3e}  {run['seconds']:.1f} s")
