@@ -75,12 +75,15 @@ struct AlignedSampler::Shared {
     std::vector<uint8_t> planned;  // written by the pixel's own thread only
 
     bool Joint() const { return aligned == Aligned::kJoint; }
-    // Dimension `dim` of sample i of the pixel of index `pixel` under kJoint.
-    Float JointSample(uint64_t pixel, int i, int dim) const {
-        const uint32_t d = dim >= 0 && dim < kJointMaxDimension && jointOf[dim] >= 0
-                               ? uint32_t(jointOf[dim])
-                               : uint32_t(16 + (dim + 2));  // past any lattice dimension
+    // Lattice dimension d of sample i of the pixel of index `pixel`, below 1.
+    Float JointPoint(uint64_t pixel, int i, uint32_t d) const {
         return std::min(Float(joint->Sample(pixel, uint32_t(i), d)), OneMinusEpsilon);
+    }
+    // Sampler dimension `dim` of sample i under kJoint: its lattice dimension,
+    // or the library's padding past any lattice dimension.
+    Float JointSample(uint64_t pixel, int i, int dim) const {
+        const bool inLattice = dim >= 0 && dim < kJointMaxDimension && jointOf[dim] >= 0;
+        return JointPoint(pixel, i, inLattice ? uint32_t(jointOf[dim]) : uint32_t(16 + (dim + 2)));
     }
     bool AlignsFilm() const {
         return aligned == Aligned::kFilmAndLight || aligned == Aligned::kFilm;
@@ -287,8 +290,7 @@ Point2f AlignedSampler::GetPixel2D() {
     Local &l = *local;
     const int i = l.IndexInPass(s), count = l.PassCount(s);
     if (s.Joint())  // the lattice's first two dimensions
-        return Point2f(std::min(Float(s.joint->Sample(l.jointPixel, uint32_t(i), 0)), OneMinusEpsilon),
-                       std::min(Float(s.joint->Sample(l.jointPixel, uint32_t(i), 1)), OneMinusEpsilon));
+        return Point2f(s.JointPoint(l.jointPixel, i, 0), s.JointPoint(l.jointPixel, i, 1));
     if (s.AlignsFilm()) {
         const Point &q = l.filmPoints[i];
         return Point2f(Float(q.x), Float(q.y));
