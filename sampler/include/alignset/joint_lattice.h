@@ -17,8 +17,11 @@
 // among those, the weighted P_2 criterion (the worst-case error of a shifted
 // lattice in the Korobov space of smoothness 2, product weights gamma_j =
 // kJointLatticeWeightDecay^j, j from 0), which sees the higher-order
-// projections too. z_0 = 1, every z_j coprime to N: each 1-D projection is
-// the N strata of [0, 1).
+// projections too. Where that greedy order leaves a pair of the first four
+// components (a renderer's film and light squares) below the floor (N = 32,
+// 40, 44), the four are searched together for the largest worst pair, and
+// the rest follow component by component. z_0 = 1, every z_j coprime to N:
+// each 1-D projection is the N strata of [0, 1).
 //
 // The API speaks dimensions, as pbrt's samplers do: Sample(pixel, i, d) is
 // dimension d of sample i of a pixel; d >= dimensions() is padded with a 1-D
