@@ -33,7 +33,6 @@ import json
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import time
@@ -41,7 +40,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pbrt_samplers import loglog_at, luminance, neighbour_jump, read_pfm, run_record  # noqa: E402
+from pbrt_samplers import loglog_at, luminance, neighbour_jump, param_text, run_pbrt, run_record  # noqa: E402
 
 BASELINES = ["zsobol", "sobol"]
 # The measured samplers: pbrt's name and parameters.
@@ -84,20 +83,6 @@ def scene_text(path, mode):
     return integrator + "".join(out)
 
 
-def param_text(params):
-    s = ""
-    for k, v in params.items():
-        if isinstance(v, bool):
-            s += f' "bool {k}" [ {str(v).lower()} ]'
-        elif isinstance(v, int):
-            s += f' "integer {k}" [ {v} ]'
-        elif isinstance(v, list):
-            s += f' "integer {k}" [ {" ".join(str(x) for x in v)} ]'
-        else:
-            s += f' "string {k}" [ "{v}" ]'
-    return s
-
-
 class Renderer:
     def __init__(self, pbrt, res, work, threads, table):
         self.pbrt, self.res, self.work, self.threads, self.table = pbrt, res, work, threads, table
@@ -109,22 +94,8 @@ class Renderer:
         if name == "aligned" and params.get("align") != "joint":
             params["table"] = self.table
         self.count += 1
-        out = os.path.join(self.work, f"r{self.count}.pfm")
-        wrapper = os.path.join(self.work, f"r{self.count}.pbrt")
-        with open(wrapper, "w") as f:
-            f.write(f'Sampler "{name}"{param_text(params)}\nPixelFilter "gaussian"\n'
-                    f'Film "rgb" "integer xresolution" [ {self.res} ] "integer yresolution" [ {self.res} ] '
-                    f'"string filename" [ "{out}" ]\n' + text)
-        t0 = time.monotonic()
-        p = subprocess.run([self.pbrt, "--quiet", "--nthreads", str(self.threads), "--spp", str(spp),
-                            "--seed", str(seed), wrapper], capture_output=True, text=True)
-        seconds = time.monotonic() - t0
-        if p.returncode != 0:
-            raise RuntimeError(f"pbrt failed on {sampler} {spp} spp seed {seed}: {p.stderr.strip()[-800:]}")
-        img = read_pfm(out)
-        os.remove(out)
-        os.remove(wrapper)
-        return img, seconds
+        return run_pbrt(self.pbrt, os.path.join(self.work, f"r{self.count}"), f'Sampler "{name}"{param_text(params)}\n',
+                        "gaussian", self.res, text, spp, seed, self.threads, [], sampler)
 
 
 def masks(ref, tau):

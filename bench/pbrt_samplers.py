@@ -100,39 +100,52 @@ class Renderer:
 
     def render(self, scene, filt, sampler, spp, seed, res=None, params=None):
         res = res or self.res
-        self.count += 1
-        out = os.path.join(self.work, f"r{self.count}.pfm")
         base = sampler.split("-")[0]
         extra = ""
         if base == "aligned":
-            extra = f' "string table" [ "{self.table}" ]'
-            for k, v in (params or {}).items():
-                if isinstance(v, bool):
-                    extra += f' "bool {k}" [ {str(v).lower()} ]'
-                elif isinstance(v, int):
-                    extra += f' "integer {k}" [ {v} ]'
-                else:
-                    extra += f' "string {k}" [ "{v}" ]'
+            extra = f' "string table" [ "{self.table}" ]' + param_text(params or {})
         # The count and the seed on pbrt's command line, which every sampler
         # reads (stratified has no "pixelsamples" of its own).
-        head = (f'Sampler "{base}"{extra}\n'
-                f'PixelFilter "{filt}"\n'
+        self.count += 1
+        return run_pbrt(self.pbrt, os.path.join(self.work, f"r{self.count}"), f'Sampler "{base}"{extra}\n',
+                        filt, res, scene_body(scene), spp, seed, self.threads, self.flags, sampler)
+
+
+def param_text(params):
+    """pbrt's parameter list for a dict: bool, integer, a list of integers,
+    or a string."""
+    s = ""
+    for k, v in params.items():
+        if isinstance(v, bool):
+            s += f' "bool {k}" [ {str(v).lower()} ]'
+        elif isinstance(v, int):
+            s += f' "integer {k}" [ {v} ]'
+        elif isinstance(v, list):
+            s += f' "integer {k}" [ {" ".join(str(x) for x in v)} ]'
+        else:
+            s += f' "string {k}" [ "{v}" ]'
+    return s
+
+
+def run_pbrt(pbrt, stem, sampler_line, filt, res, body, spp, seed, threads, flags, what):
+    """Renders body under the sampler line, filter and a res x res film with
+    pbrt's binary (stem.pbrt, stem.pfm, both removed after); returns the image
+    and the wall-clock seconds."""
+    out, wrapper = stem + ".pfm", stem + ".pbrt"
+    with open(wrapper, "w") as f:
+        f.write(sampler_line + f'PixelFilter "{filt}"\n'
                 f'Film "rgb" "integer xresolution" [ {res} ] "integer yresolution" [ {res} ] '
-                f'"string filename" [ "{out}" ]\n')
-        wrapper = os.path.join(self.work, f"r{self.count}.pbrt")
-        with open(wrapper, "w") as f:
-            f.write(head + scene_body(scene))
-        t0 = time.monotonic()
-        p = subprocess.run([self.pbrt, "--quiet", "--nthreads", str(self.threads), "--spp", str(spp),
-                            "--seed", str(seed)] + self.flags + [wrapper],
-                           capture_output=True, text=True)
-        seconds = time.monotonic() - t0
-        if p.returncode != 0:
-            raise RuntimeError(f"pbrt failed on {sampler} {spp} spp seed {seed}: {p.stderr.strip()[-800:]}")
-        img = read_pfm(out)
-        os.remove(out)
-        os.remove(wrapper)
-        return img, seconds
+                f'"string filename" [ "{out}" ]\n' + body)
+    t0 = time.monotonic()
+    p = subprocess.run([pbrt, "--quiet", "--nthreads", str(threads), "--spp", str(spp),
+                        "--seed", str(seed)] + flags + [wrapper], capture_output=True, text=True)
+    seconds = time.monotonic() - t0
+    if p.returncode != 0:
+        raise RuntimeError(f"pbrt failed on {what} {spp} spp seed {seed}: {p.stderr.strip()[-800:]}")
+    img = read_pfm(out)
+    os.remove(out)
+    os.remove(wrapper)
+    return img, seconds
 
 
 def neighbour_jump(y):
