@@ -109,9 +109,10 @@ StatusOr<PixelPlan> AlignedSampler::Plan(uint32_t x, uint32_t y, std::span<const
     return plan;
   }
   ++stats.with_direction;
-  if (plan.choice.kind == SetChoice::Kind::kTwo && sections_.pairs == nullptr) {
-    // A table without two-direction sets: the stronger edge's set
-    // (documented; asked before any lookup, so no error is built).
+  if (plan.choice.kind == SetChoice::Kind::kTwo && !table_->Holds(sections_, plan.choice)) {
+    // A table without two-direction sets, or without this pair: the
+    // stronger edge's set (documented; asked before any lookup, so no
+    // error is built).
     AlignedPolicy one = policy;
     one.two_directions = false;
     plan.choice = ChooseSet({d.directions, d.theta1_deg, d.theta2_deg}, one);

@@ -105,16 +105,24 @@ struct SetTable::Section {
   const TableSection* section = nullptr;
   const Construction* construction = nullptr;
   std::unique_ptr<AlignedSets> aligned;  // a point set's alignments, built on first use
+  // A section that lists its keys: each canonical key's place in its
+  // payload, kAbsent for a key it does not hold (4141 entries at most).
+  static constexpr uint32_t kAbsent = ~0u;
+  std::vector<uint32_t> place;
 
+  uint32_t Place(uint32_t key) const { return place.empty() ? key : place[key]; }
+  bool Holds(const Served& s) const { return Place(s.index) != kAbsent; }
+  // The aligned set of a served slot whose key the section holds.
   TableSet Aligned(size_t slot, const Served& s) const {
+    const uint32_t k = Place(s.index);
     TableSet out;
-    out.n = section->n;
+    out.n = section->sizes.empty() ? section->n : section->sizes[k];
     if (construction->lattice()) {
-      out.lattice_generator = MapLatticeGenerator(out.n, section->generators[s.index], s.ops.swap, s.ops.invert,
+      out.lattice_generator = MapLatticeGenerator(out.n, section->generators[k], s.ops.swap, s.ops.invert,
                                                   s.ops.invert_y);
       out.folded = construction->folded();
     } else {
-      out.points = &aligned->Get(slot, section->sets[s.index], s.ops);
+      out.points = &aligned->Get(slot, section->sets[k], s.ops);
     }
     return out;
   }
@@ -161,6 +169,10 @@ StatusOr<std::shared_ptr<const SetTable>> SetTable::FromSections(std::vector<Tab
                                                                  : 180;
       e.aligned = std::make_unique<AlignedSets>(slots);
     }
+    if (!s.keys.empty()) {
+      e.place.assign(TableSpaceKeys(s.space), Section::kAbsent);
+      for (size_t k = 0; k < s.keys.size(); ++k) e.place[s.keys[k]] = static_cast<uint32_t>(k);
+    }
     impl->by_key.emplace(std::make_tuple(s.n, s.construction, static_cast<int>(s.space)), std::move(e));
   }
   return std::shared_ptr<const SetTable>(new SetTable(std::move(impl)));
@@ -187,6 +199,8 @@ StatusOr<std::shared_ptr<const SetTable>> SetTable::Load(const std::string& path
 }
 
 std::vector<uint8_t> SetTable::Serialize() const { return sampler::EncodeTable(impl_->sections); }
+
+uint32_t SetTable::format_version() const { return sampler::FormatVersion(impl_->sections); }
 
 Status SetTable::Save(const std::string& path) const {
   const std::vector<uint8_t> bytes = Serialize();
@@ -238,11 +252,13 @@ SetTable::Sections SetTable::Resolve(uint32_t n, std::string_view construction) 
 }
 
 void SetTable::AlignOneDirectionSets(const Sections& sections) const {
-  if (sections.whole != nullptr && sections.whole->aligned) {
-    for (int deg = 0; deg < 180; ++deg) sections.whole->Aligned(deg, ServedOne(AngleGrid::kWholeDegree)[deg]);
-  }
-  if (sections.quarter != nullptr && sections.quarter->aligned) {
-    for (int q = 0; q < 720; ++q) sections.quarter->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+  for (const auto& [section, grid] : {std::pair{sections.whole, AngleGrid::kWholeDegree},
+                                      std::pair{sections.quarter, AngleGrid::kQuarterDegree}}) {
+    if (section == nullptr || !section->aligned) continue;
+    const std::vector<Served>& served = ServedOne(grid);
+    for (size_t slot = 0; slot < served.size(); ++slot) {
+      if (section->Holds(served[slot])) section->Aligned(slot, served[slot]);
+    }
   }
 }
 
@@ -250,37 +266,67 @@ StatusOr<TableSet> SetTable::Find(uint32_t n, std::string_view construction, con
   return Find(Resolve(n, construction), choice);
 }
 
-StatusOr<TableSet> SetTable::Find(const Sections& sections, const SetChoice& choice) const {
-  auto missing = [&](TableSpace space) {
-    const std::string n = std::to_string(sections.n), c(sections.construction);
-    return Status::NotFound("the table has no " + c + " sets of N = " + n + " for " + TableSpaceName(space) +
-                            " (export them: alignset export --n " + n + " --construction " + c + ")");
-  };
+namespace {
+
+// Where a choice is served from: its section (null: the table has none), its
+// slot among that section's served values, and the key and alignment it
+// is served by.
+struct Lookup {
+  const SetTable::Section* section = nullptr;
+  TableSpace space = TableSpace::kOneDirection;
+  size_t slot = 0;
+  const Served* served = nullptr;
+};
+
+// INVALID_ARGUMENT for a choice out of range; no allocation otherwise.
+StatusOr<Lookup> Locate(const SetTable::Sections& sections, const SetChoice& choice) {
   switch (choice.kind) {
     case SetChoice::Kind::kFallback:
       return Status::InvalidArgument("a fallback choice reads no set");
     case SetChoice::Kind::kOne: {
       if (choice.a < 0 || choice.a >= 180) return Status::InvalidArgument("served degree out of [0, 180)");
+      const size_t deg = static_cast<size_t>(choice.a);
       if (sections.whole != nullptr) {
-        return sections.whole->Aligned(static_cast<size_t>(choice.a), ServedOne(AngleGrid::kWholeDegree)[choice.a]);
+        return Lookup{sections.whole, TableSpace::kOneDirection, deg, &ServedOne(AngleGrid::kWholeDegree)[deg]};
       }
       // A quarter-degree section holds every whole degree too.
       if (sections.quarter != nullptr) {
-        const size_t q = static_cast<size_t>(choice.a) * 4;
-        return sections.quarter->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+        return Lookup{sections.quarter, TableSpace::kOneQuarter, deg * 4, &ServedOne(AngleGrid::kQuarterDegree)[deg * 4]};
       }
-      return missing(TableSpace::kOneDirection);
+      return Lookup{nullptr, TableSpace::kOneDirection, deg, nullptr};
     }
     case SetChoice::Kind::kTwo: {
       if (choice.a < 0 || choice.b >= 180 || choice.a >= choice.b) {
         return Status::InvalidArgument("served pair out of range (0 <= a < b < 180)");
       }
-      if (sections.pairs == nullptr) return missing(TableSpace::kTwoDirections);
       const size_t slot = static_cast<size_t>(choice.a) * 180 + static_cast<size_t>(choice.b);
-      return sections.pairs->Aligned(slot, ServedTwo()[slot]);
+      return Lookup{sections.pairs, TableSpace::kTwoDirections, slot, &ServedTwo()[slot]};
     }
   }
   return Status::InvalidArgument("unknown choice");
+}
+
+}  // namespace
+
+bool SetTable::Holds(const Sections& sections, const SetChoice& choice) const {
+  auto at = Locate(sections, choice);
+  return at.ok() && at->section != nullptr && at->section->Holds(*at->served);
+}
+
+StatusOr<TableSet> SetTable::Find(const Sections& sections, const SetChoice& choice) const {
+  auto at = Locate(sections, choice);
+  if (!at.ok()) return at.status();
+  if (at->section != nullptr && at->section->Holds(*at->served)) return at->section->Aligned(at->slot, *at->served);
+  const std::string n = std::to_string(sections.n), c(sections.construction);
+  std::string what = TableSpaceName(at->space);
+  if (at->section != nullptr) {
+    what += choice.kind == SetChoice::Kind::kTwo
+                ? " pair (" + std::to_string(choice.a) + ", " + std::to_string(choice.b) + ")"
+                : " direction " + std::to_string(choice.a);
+    what += " (its section holds only some keys)";
+  }
+  return Status::NotFound("the table has no " + c + " sets of N = " + n + " for " + what +
+                          " (export them: alignset export --n " + n + " --construction " + c + ")");
 }
 
 StatusOr<TableSet> SetTable::FindOne(uint32_t n, std::string_view construction, double theta_deg) const {
@@ -289,7 +335,11 @@ StatusOr<TableSet> SetTable::FindOne(uint32_t n, std::string_view construction, 
     double t = std::fmod(theta_deg, 180.0);
     if (t < 0) t += 180.0;
     const size_t q = static_cast<size_t>(std::llround(t * 4.0)) % 720;
-    return e->Aligned(q, ServedOne(AngleGrid::kQuarterDegree)[q]);
+    const Served& served = ServedOne(AngleGrid::kQuarterDegree)[q];
+    if (e->Holds(served)) return e->Aligned(q, served);
+    return Status::NotFound("the table has no " + std::string(construction) + " sets of N = " + std::to_string(n) +
+                            " for direction " + std::to_string(theta_deg) +
+                            " (its quarter-degree section holds only some keys)");
   }
   return Find(n, construction, {SetChoice::Kind::kOne, ServedDegree(theta_deg), 0});
 }

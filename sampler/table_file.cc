@@ -23,6 +23,10 @@ constexpr size_t kEntryBytes = 20;
 constexpr size_t kTrailerBytes = 4;
 constexpr uint8_t kPayloadGenerators = 1;
 constexpr uint8_t kPayloadPoints = 2;
+// Version 2's directory flags: the payload starts with the keys held, then
+// the lattices' sizes.
+constexpr uint8_t kListsKeys = 1;
+constexpr uint8_t kListsSizes = 2;
 
 void Put32(std::vector<uint8_t>* out, uint32_t v) {
   for (int i = 0; i < 4; ++i) out->push_back(static_cast<uint8_t>(v >> (8 * i)));
@@ -54,12 +58,23 @@ std::string SectionName(uint32_t n, std::string_view construction, TableSpace sp
   return "section N=" + std::to_string(n) + " " + std::string(construction) + " " + TableSpaceName(space);
 }
 
-uint64_t PayloadBytes(const TableSection& s, bool lattice) {
-  const uint64_t keys = TableSpaceKeys(s.space);
-  return lattice ? keys * 4 : keys * uint64_t{s.n} * 16;
+// The keys a section holds: its list's, or its whole space's.
+uint64_t HeldKeys(const TableSection& s) { return s.keys.empty() ? TableSpaceKeys(s.space) : s.keys.size(); }
+
+uint8_t Flags(const TableSection& s) {
+  return static_cast<uint8_t>((s.keys.empty() ? 0 : kListsKeys) | (s.sizes.empty() ? 0 : kListsSizes));
+}
+
+uint64_t PayloadBytes(uint32_t n, uint64_t keys, uint8_t flags, bool lattice) {
+  const uint64_t lists = ((flags & kListsKeys) ? 4 : 0) + ((flags & kListsSizes) ? 4 : 0);
+  return keys * (lists + (lattice ? 4 : uint64_t{n} * 16));
 }
 
 }  // namespace
+
+uint32_t FormatVersion(const std::vector<TableSection>& sections) {
+  return std::any_of(sections.begin(), sections.end(), [](const TableSection& s) { return s.partial(); }) ? 2 : 1;
+}
 
 Status CheckSections(const std::vector<TableSection>& sections) {
   if (sections.empty()) return Status::InvalidArgument("the table has no sections");
@@ -77,16 +92,39 @@ Status CheckSections(const std::vector<TableSection>& sections) {
     if (!seen.insert({s.n, s.construction, static_cast<int>(s.space)}).second) {
       return Status::InvalidArgument(name + " appears twice");
     }
-    const size_t keys = TableSpaceKeys(s.space);
+    const size_t space_keys = TableSpaceKeys(s.space);
+    for (size_t i = 0; i < s.keys.size(); ++i) {
+      if (s.keys[i] >= space_keys) {
+        return Status::InvalidArgument(name + ": key " + std::to_string(s.keys[i]) + " is not in the space's " +
+                                       std::to_string(space_keys));
+      }
+      if (i > 0 && s.keys[i] <= s.keys[i - 1]) {
+        return Status::InvalidArgument(name + ": keys not ascending (" + std::to_string(s.keys[i]) + " after " +
+                                       std::to_string(s.keys[i - 1]) + ")");
+      }
+    }
+    const size_t keys = HeldKeys(s);
     const size_t have = c->lattice() ? s.generators.size() : s.sets.size();
     if (have != keys || (c->lattice() ? !s.sets.empty() : !s.generators.empty())) {
-      return Status::InvalidArgument(name + ": " + std::to_string(have) + " keys where the space has " +
+      return Status::InvalidArgument(name + ": " + std::to_string(have) + " keys where " +
+                                     (s.keys.empty() ? "the space has " : "the section lists ") +
                                      std::to_string(keys));
+    }
+    if (!s.sizes.empty() && (!c->lattice() || s.sizes.size() != keys)) {
+      return Status::InvalidArgument(name + ": " + std::to_string(s.sizes.size()) +
+                                     " sizes: a lattice section gives one per key held, others none");
     }
     for (size_t k = 0; k < keys; ++k) {
       if (c->lattice()) {
+        const uint32_t size = s.sizes.empty() ? s.n : s.sizes[k];
+        if (!s.sizes.empty()) {
+          if (Status ok = ValidatePointCount(size, *c); !ok.ok() || size > s.n) {
+            return Status::InvalidArgument(name + ", key " + std::to_string(k) + ": size " + std::to_string(size) +
+                                           (ok.ok() ? " above N" : ": " + ok.message()));
+          }
+        }
         const uint32_t g = s.generators[k];
-        if (g == 0 || g >= s.n || std::gcd(g, s.n) != 1) {
+        if (g == 0 || g >= size || std::gcd(g, size) != 1) {
           return Status::InvalidArgument(name + ", key " + std::to_string(k) + ": generator " + std::to_string(g) +
                                          " out of range (1 <= g < N, coprime to N)");
         }
@@ -112,7 +150,7 @@ Status CheckSections(const std::vector<TableSection>& sections) {
 
 std::vector<uint8_t> EncodeTable(const std::vector<TableSection>& sections) {
   std::vector<uint8_t> out(kTableMagic, kTableMagic + sizeof(kTableMagic));
-  Put32(&out, SetTable::kFormatVersion);
+  Put32(&out, FormatVersion(sections));
   Put32(&out, static_cast<uint32_t>(sections.size()));
   for (const TableSection& s : sections) {
     const bool lattice = FindConstruction(s.construction)->lattice();
@@ -120,11 +158,13 @@ std::vector<uint8_t> EncodeTable(const std::vector<TableSection>& sections) {
     out.push_back(static_cast<uint8_t>(FindConstruction(s.construction)->kind));
     out.push_back(static_cast<uint8_t>(s.space));
     out.push_back(lattice ? kPayloadGenerators : kPayloadPoints);
-    out.push_back(0);
-    Put32(&out, TableSpaceKeys(s.space));
-    Put64(&out, PayloadBytes(s, lattice));
+    out.push_back(Flags(s));
+    Put32(&out, static_cast<uint32_t>(HeldKeys(s)));
+    Put64(&out, PayloadBytes(s.n, HeldKeys(s), Flags(s), lattice));
   }
   for (const TableSection& s : sections) {
+    for (uint32_t k : s.keys) Put32(&out, k);
+    for (uint32_t size : s.sizes) Put32(&out, size);
     for (uint32_t g : s.generators) Put32(&out, g);
     for (const PointSet& set : s.sets) {
       for (const Point2& p : set) {
@@ -148,8 +188,8 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
     return Status::DataLoss("truncated: " + std::to_string(size) + " bytes, less than a header");
   }
   const uint32_t version = Get32(bytes.data() + 8);
-  if (version != SetTable::kFormatVersion) {
-    return Status::InvalidArgument("format version " + std::to_string(version) + "; this library reads version " +
+  if (version < 1 || version > SetTable::kFormatVersion) {
+    return Status::InvalidArgument("format version " + std::to_string(version) + "; this library reads versions 1 to " +
                                    std::to_string(SetTable::kFormatVersion));
   }
   const uint64_t count = Get32(bytes.data() + 12);
@@ -190,8 +230,14 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
     s.space = static_cast<TableSpace>(e[5]);
     const std::string name = SectionName(s.n, s.construction, s.space);
     if (Status size = ValidatePointCount(s.n, *c); !size.ok()) return Status::InvalidArgument(name + ": " + size.message());
+    const uint8_t flags = e[7];
+    const uint8_t known = version >= 2 ? (kListsKeys | kListsSizes) : 0;
+    if ((flags & ~known) != 0 || ((flags & kListsSizes) && !c->lattice())) {
+      return Status::InvalidArgument(name + ": flags " + std::to_string(flags) + " this format version " +
+                                     std::to_string(version) + " does not have for this construction");
+    }
     const uint32_t keys = Get32(e + 8);
-    if (keys != TableSpaceKeys(s.space)) {
+    if ((flags & kListsKeys) ? (keys == 0 || keys > TableSpaceKeys(s.space)) : keys != TableSpaceKeys(s.space)) {
       return Status::InvalidArgument(name + ": " + std::to_string(keys) + " keys where the space has " +
                                      std::to_string(TableSpaceKeys(s.space)));
     }
@@ -199,11 +245,19 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
       return Status::InvalidArgument(name + ": a payload of the wrong kind for its construction");
     }
     const uint64_t payload = Get64(e + 12);
-    if (payload != PayloadBytes(s, c->lattice())) {
+    const uint64_t expected_payload = PayloadBytes(s.n, keys, flags, c->lattice());
+    if (payload != expected_payload) {
       return Status::InvalidArgument(name + ": " + std::to_string(payload) + " payload bytes, expected " +
-                                     std::to_string(PayloadBytes(s, c->lattice())));
+                                     std::to_string(expected_payload));
     }
     const uint8_t* p = bytes.data() + at;
+    for (uint32_t list : {kListsKeys, kListsSizes}) {
+      if (!(flags & list)) continue;
+      std::vector<uint32_t>& into = list == kListsKeys ? s.keys : s.sizes;
+      into.resize(keys);
+      for (uint32_t k = 0; k < keys; ++k) into[k] = Get32(p + 4 * k);
+      p += uint64_t{keys} * 4;
+    }
     if (c->lattice()) {
       s.generators.resize(keys);
       for (uint32_t k = 0; k < keys; ++k) s.generators[k] = Get32(p + 4 * k);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -119,9 +120,18 @@ TEST_F(SetTableTest, AWrongMagicOrVersionIsRefused) {
   ExpectRefused(b, Status::Code::kInvalidArgument, "wrong magic");
   ExpectRefused({'P', 'K', 3, 4}, Status::Code::kInvalidArgument, "wrong magic");
   b = Bytes({*lattice_});
-  Put32(&b, 8, 2);
+  Put32(&b, 8, 3);
   Rechecksum(&b);
-  ExpectRefused(b, Status::Code::kInvalidArgument, "format version 2; this library reads version 1");
+  ExpectRefused(b, Status::Code::kInvalidArgument, "format version 3; this library reads versions 1 to 2");
+  b = Bytes({*lattice_});
+  Put32(&b, 8, 0);
+  Rechecksum(&b);
+  ExpectRefused(b, Status::Code::kInvalidArgument, "format version 0;");
+  // A version-1 file has no flags.
+  b = Bytes({*lattice_});
+  b[16 + 7] = 1;
+  Rechecksum(&b);
+  ExpectRefused(b, Status::Code::kInvalidArgument, "flags 1 this format version 1 does not have");
 }
 
 TEST_F(SetTableTest, AChecksumMismatchIsRefused) {
@@ -236,6 +246,120 @@ TEST_F(SetTableTest, AMissingSectionIsAClearError) {
             Status::Code::kInvalidArgument);
   EXPECT_EQ((*t)->Find(64, "lattice", {SetChoice::Kind::kFallback, 0, 0}).status().code(),
             Status::Code::kInvalidArgument);
+}
+
+// A section of some keys: the keys a render's pixels choose, of 4141 pairs.
+TableSection SomeKeys(const TableSection& whole, std::vector<uint32_t> keys) {
+  TableSection s = whole;
+  s.keys = std::move(keys);
+  s.generators.clear();
+  s.sets.clear();
+  for (uint32_t k : s.keys) {
+    if (!whole.generators.empty()) s.generators.push_back(whole.generators[k]);
+    if (!whole.sets.empty()) s.sets.push_back(whole.sets[k]);
+  }
+  return s;
+}
+
+uint32_t PairKey(int a, int b) {
+  return static_cast<uint32_t>(*CanonicalKeyIndex(Canonicalize({static_cast<double>(a), static_cast<double>(b)})->key));
+}
+
+// A partial section serves what it holds exactly as the whole section does,
+// refuses the rest with NOT_FOUND naming the pair, and needs version 2; a
+// table of whole sections is still written as version 1, byte for byte.
+TEST_F(SetTableTest, ASectionOfSomeKeysServesThemAsTheWholeSectionDoes) {
+  const std::vector<uint32_t> held = {PairKey(10, 100), PairKey(12, 77), PairKey(30, 31)};
+  std::vector<uint32_t> sorted = held;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  const TableSection points_whole = PointsSection(16, TableSpace::kTwoDirections);
+  auto whole = SetTable::FromSections({*lattice_, *pairs_, points_whole});
+  auto some = SetTable::FromSections({*lattice_, SomeKeys(*pairs_, sorted), SomeKeys(points_whole, sorted)});
+  ASSERT_TRUE(whole.ok() && some.ok()) << some.status().message();
+  for (auto [a, b] : {std::pair{10, 100}, std::pair{12, 77}, std::pair{30, 31}, std::pair{80, 170}}) {
+    SCOPED_TRACE(std::to_string(a) + "," + std::to_string(b));
+    const SetChoice pair{SetChoice::Kind::kTwo, a, b};
+    for (const char* construction : {"lattice", "optimized"}) {
+      const uint32_t n = std::string(construction) == "lattice" ? 64 : 16;
+      const auto sections = (*some)->Resolve(n, construction);
+      const bool held_pair = std::find(sorted.begin(), sorted.end(), PairKey(a, b)) != sorted.end();
+      EXPECT_EQ((*some)->Holds(sections, pair), held_pair);
+      auto from_some = (*some)->Find(sections, pair);
+      auto from_whole = (*whole)->Find(n, construction, pair);
+      ASSERT_TRUE(from_whole.ok());
+      if (!held_pair) {
+        EXPECT_EQ(from_some.status().code(), Status::Code::kNotFound);
+        EXPECT_NE(from_some.status().message().find("2dir pair (80, 170)"), std::string::npos)
+            << from_some.status().message();
+        continue;
+      }
+      ASSERT_TRUE(from_some.ok()) << from_some.status().message();
+      EXPECT_EQ(from_some->n, from_whole->n);
+      EXPECT_EQ(from_some->lattice_generator, from_whole->lattice_generator);
+      if (from_whole->points) EXPECT_EQ(*from_some->points, *from_whole->points);
+    }
+  }
+  const std::vector<uint8_t> v2 = (*some)->Serialize();
+  EXPECT_EQ(v2[8], 2);
+  auto back = SetTable::Parse(v2);
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ((*back)->sections()[1].keys, sorted);
+  EXPECT_EQ((*back)->sections()[1].generators, SomeKeys(*pairs_, sorted).generators);
+  EXPECT_EQ((*back)->sections()[2].sets, SomeKeys(points_whole, sorted).sets);
+  EXPECT_EQ((*back)->Serialize(), v2);
+  EXPECT_EQ((*some)->format_version(), 2u);
+  EXPECT_EQ((*whole)->format_version(), 1u);
+  EXPECT_EQ((*whole)->Serialize()[8], 1);
+  // Keys out of the space, repeated or out of order are refused, in memory
+  // and in a file.
+  for (std::vector<uint32_t> bad : {std::vector<uint32_t>{4141}, std::vector<uint32_t>{7, 7},
+                                    std::vector<uint32_t>{9, 3}}) {
+    TableSection s = SomeKeys(*pairs_, {1, 2});
+    s.keys = bad;
+    s.generators.resize(bad.size(), 1);
+    EXPECT_EQ(SetTable::FromSections({s}).status().code(), Status::Code::kInvalidArgument);
+  }
+  std::vector<uint8_t> b = Bytes({SomeKeys(*pairs_, {3, 9})});
+  Put32(&b, 16 + 20, 9);  // keys 9, 9
+  Rechecksum(&b);
+  ExpectRefused(b, Status::Code::kInvalidArgument, "keys not ascending (9 after 9)");
+}
+
+// A lattice section whose keys have fewer points than N (a render's size
+// span) serves each key's lattice at its own size, and keeps the sizes
+// through a file.
+TEST_F(SetTableTest, ALatticeOfFewerPointsThanNKeepsItsSize) {
+  TableSection sized = *lattice_;
+  sized.sizes.assign(sized.generators.size(), 64);
+  const uint32_t key = 5;
+  sized.sizes[key] = 61;  // prime: any generator below it is coprime
+  sized.generators[key] = 17;
+  auto t = SetTable::FromSections({sized});
+  ASSERT_TRUE(t.ok()) << t.status().message();
+  for (int a = 0; a < 180; ++a) {
+    const auto c = Canonicalize({static_cast<double>(a)});
+    const uint32_t k = static_cast<uint32_t>(*CanonicalKeyIndex(c->key));
+    auto set = (*t)->Find(64, "lattice", {SetChoice::Kind::kOne, a, 0});
+    ASSERT_TRUE(set.ok());
+    EXPECT_EQ(set->n, sized.sizes[k]);
+    EXPECT_EQ(set->lattice_generator,
+              MapLatticeGenerator(sized.sizes[k], sized.generators[k], c->ops.swap, c->ops.invert, c->ops.invert_y));
+  }
+  auto back = SetTable::Parse((*t)->Serialize());
+  ASSERT_TRUE(back.ok()) << back.status().message();
+  EXPECT_EQ((*back)->sections()[0].sizes, sized.sizes);
+  TableSection too_big = sized;
+  too_big.sizes[key] = 65;
+  EXPECT_NE(SetTable::FromSections({too_big}).status().message().find("size 65 above N"), std::string::npos);
+  TableSection too_small = sized;
+  too_small.sizes[key] = 8;
+  too_small.generators[key] = 3;
+  EXPECT_NE(SetTable::FromSections({too_small}).status().message().find("size 8: N = 8 is below"), std::string::npos)
+      << SetTable::FromSections({too_small}).status().message();
+  TableSection points = PointsSection(16, TableSpace::kOneDirection);
+  points.sizes.assign(points.sets.size(), 16);
+  EXPECT_EQ(SetTable::FromSections({points}).status().code(), Status::Code::kInvalidArgument);
 }
 
 }  // namespace

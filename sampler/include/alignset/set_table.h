@@ -17,8 +17,9 @@
 // payloads, and a CRC-32C of everything before it (little-endian
 // throughout). Load refuses, naming the problem, an empty or truncated file,
 // a wrong magic or version, a checksum mismatch, an N, construction or space
-// out of range, a key count that is not its space's, and a generator or
-// point that cannot be a served set's.
+// out of range, a key count that is not its space's (or, for a section that
+// lists its keys, a key out of the space, repeated or out of order), and a
+// generator, size or point that cannot be a served set's.
 
 #include <alignset/point_set.h>
 #include <alignset/set_choice.h>
@@ -52,8 +53,19 @@ struct TableSection {
   uint32_t n = 0;
   std::string construction;  // "lattice", "tent-lattice", "optimized" or "net"
   TableSpace space = TableSpace::kOneDirection;
-  std::vector<uint32_t> generators;  // a lattice's: one per key
-  std::vector<PointSet> sets;        // any other construction's: one per key, N points each
+  // The canonical keys held (CanonicalKeyIndex, ascending), where the section
+  // holds only some: a render fetches or searches only the pairs its pixels
+  // choose, of 4141. Empty: every key of the space.
+  std::vector<uint32_t> keys;
+  std::vector<uint32_t> generators;  // a lattice's: one per key held
+  std::vector<PointSet> sets;        // any other construction's: one per key held, N points each
+  // A lattice's points per key held, where a key's lattice has fewer than N
+  // (a render's --lattice-size-span chooses N' in [N - span, N] per key; a
+  // pixel spends at most N). Empty: N for every key.
+  std::vector<uint32_t> sizes;
+  // Holds some keys only, or lattices of other sizes than N: such a section
+  // needs format version 2 (a table of whole sections stays version 1).
+  bool partial() const { return !keys.empty() || !sizes.empty(); }
 };
 
 // A served set, aligned to the pixel's directions.
@@ -86,8 +98,11 @@ class SetTable {
     bool one_direction() const { return whole != nullptr || quarter != nullptr; }
   };
 
-  // The file format this library reads and writes.
-  static constexpr uint32_t kFormatVersion = 1;
+  // The newest file format this library reads and writes. A table whose
+  // sections are all whole (no key list, N points a key) is written as
+  // version 1, byte for byte what earlier versions wrote; a partial section
+  // (TableSection::partial) needs version 2.
+  static constexpr uint32_t kFormatVersion = 2;
 
   // Refused as described above; the message names the file and the problem.
   static StatusOr<std::shared_ptr<const SetTable>> Load(const std::string& path);
@@ -100,6 +115,8 @@ class SetTable {
   // into place: a crash never leaves half a table under `path`).
   std::vector<uint8_t> Serialize() const;
   Status Save(const std::string& path) const;
+  // The version Serialize writes: 1, or 2 where a section is partial.
+  uint32_t format_version() const;
 
   const std::vector<TableSection>& sections() const;
   // The N with a one-direction section of `construction`, ascending.
@@ -114,7 +131,7 @@ class SetTable {
   void AlignOneDirectionSets(const Sections& sections) const;
 
   // The set a pixel's choice reads, aligned. NOT_FOUND naming what is
-  // missing when the table has no section for it (a two-direction choice
+  // missing when the table has no section or key for it (a two-direction choice
   // from a table without two-direction keys is the caller's fallback to
   // decide: AlignedSampler takes the stronger direction's set), and
   // INVALID_ARGUMENT for a choice out of range.
@@ -122,6 +139,10 @@ class SetTable {
   // The same through resolved sections (no key built, no allocation once
   // the sets are aligned).
   StatusOr<TableSet> Find(const Sections& sections, const SetChoice& choice) const;
+  // Whether Find would serve the choice (its section is there and holds its
+  // key): asked without building an error, e.g. before falling back from a
+  // pair the table does not hold.
+  bool Holds(const Sections& sections, const SetChoice& choice) const;
   // One direction served on the quarter-degree grid (a kOneQuarter section),
   // or to the nearest whole degree when the table has only whole degrees.
   StatusOr<TableSet> FindOne(uint32_t n, std::string_view construction, double theta_deg) const;
