@@ -42,7 +42,10 @@ namespace alignset {
 namespace {
 
 TableSection Lattices(uint32_t n, TableSpace space) {
-  TableSection s{n, "lattice", space, {}, {}};
+  TableSection s;
+  s.n = n;
+  s.construction = "lattice";
+  s.space = space;
   for (uint32_t k = 0; k < TableSpaceKeys(space); ++k) {
     uint32_t g = 1 + (2 * k + 1) % (n - 1);
     while (std::gcd(g, n) != 1) ++g;
@@ -52,7 +55,10 @@ TableSection Lattices(uint32_t n, TableSpace space) {
 }
 
 TableSection Points(uint32_t n, TableSpace space) {
-  TableSection s{n, "optimized", space, {}, {}};
+  TableSection s;
+  s.n = n;
+  s.construction = "optimized";
+  s.space = space;
   for (uint32_t k = 0; k < TableSpaceKeys(space); ++k) s.sets.push_back(OwenScrambledSobol(n, k));
   return s;
 }

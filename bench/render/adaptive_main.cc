@@ -67,7 +67,10 @@ StatusOr<std::shared_ptr<const SetTable>> Tables(const std::string& path) {
   if (std::filesystem::exists(path)) return SetTable::Load(path);
   const auto keys = OneDirectionKeys();
   std::vector<TableSection> sections;
-  TableSection seq{kMaxMain, "lattice-sequence", TableSpace::kOneDirection, {}, {}};
+  TableSection seq;
+  seq.n = kMaxMain;
+  seq.construction = "lattice-sequence";
+  seq.space = TableSpace::kOneDirection;
   for (size_t k = 0; k < keys.size(); ++k) {
     LatticeSequenceOptions o;
     o.threads = 0;
@@ -83,7 +86,10 @@ StatusOr<std::shared_ptr<const SetTable>> Tables(const std::string& path) {
     o.threads = 0;
     auto choices = ChooseAlignedLatticeGenerators(n, keys, o);
     if (!choices.ok()) return choices.status();
-    TableSection s{n, "lattice", TableSpace::kOneDirection, {}, {}};
+    TableSection s;
+    s.n = n;
+    s.construction = "lattice";
+    s.space = TableSpace::kOneDirection;
     for (const AlignedLatticeChoice& c : *choices) s.generators.push_back(c.generator);
     sections.push_back(std::move(s));
   }

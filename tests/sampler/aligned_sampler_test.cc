@@ -202,7 +202,10 @@ TEST_F(AlignedSamplerTest, ThePlanFollowsTheEdgeAndTheMainPointsAreItsLattice) {
 // lattice), and an estimate from k main values weighs the pre-pass as
 // beside k. A fixed-size lattice's sampler is not progressive.
 TEST_F(AlignedSamplerTest, ALatticeSequenceTableIsProgressive) {
-  TableSection seq{1024, "lattice-sequence", TableSpace::kOneDirection, {}, {}};
+  TableSection seq;
+  seq.n = 1024;
+  seq.construction = "lattice-sequence";
+  seq.space = TableSpace::kOneDirection;
   for (uint32_t k = 0; k < TableSpaceKeys(TableSpace::kOneDirection); ++k) {
     seq.sets.push_back(LatticeSequencePoints(1024, 2 * k + 4001, 0));
   }
@@ -348,6 +351,44 @@ TEST_F(AlignedSamplerTest, APairTheTableLacksReadsTheStrongerDirectionsSet) {
     EXPECT_EQ(scratch.stats().pair_fell_back, 1u);
   } else {
     EXPECT_FALSE(r.plan.pair_fell_back);
+  }
+}
+
+// A table whose pair section holds only some keys (a render's, or a file
+// of format version 2): a pixel whose pair it holds reads it; another falls
+// back to the stronger direction as from a table without pairs.
+TEST_F(AlignedSamplerTest, APairSectionOfSomeKeysServesThemAndFallsBackFromTheRest) {
+  const Edge a{20.0, 6.5, 6.5}, b{110.0, 6.5, 6.5};
+  const auto corner = [&](uint32_t x, uint32_t y, double u, double v) { return a.At(x, y, u, v) * b.At(x, y, u, v); };
+  AlignedSampler::Scratch scratch;
+  const Rendered first = RenderPixel(Make(Options(256, 12)), scratch, 6, 6, 12, 12, corner);
+  ASSERT_EQ(first.plan.directions, 2) << "the corner's pre-pass must find both edges";
+  AlignedPolicy both;
+  const SetChoice pair = ChooseSet({2, first.plan.theta1_deg, first.plan.theta2_deg}, both);
+  ASSERT_EQ(pair.kind, SetChoice::Kind::kTwo);
+  const auto how = Canonicalize({static_cast<double>(pair.a), static_cast<double>(pair.b)});
+  const uint32_t key = static_cast<uint32_t>(*CanonicalKeyIndex(how->key));
+  for (const bool holds : {true, false}) {
+    SCOPED_TRACE(holds ? "the pair's key held" : "another key held");
+    TableSection some;
+    some.n = 256;
+    some.construction = "lattice";
+    some.space = TableSpace::kTwoDirections;
+    some.keys = {holds ? key : (key == 0 ? 1u : 0u)};
+    some.generators = {1};
+    auto t = SetTable::FromSections({(*table_)->sections()[0], some});
+    ASSERT_TRUE(t.ok()) << t.status().message();
+    auto s = AlignedSampler::Create(*t, Options(256, 12));
+    ASSERT_TRUE(s.ok()) << s.status().message();
+    AlignedSampler::Scratch fresh;
+    const Rendered r = RenderPixel(*s, fresh, 6, 6, 12, 12, corner);
+    ASSERT_EQ(r.plan.directions, 2);
+    EXPECT_EQ(r.plan.pair_fell_back, !holds);
+    EXPECT_EQ(r.plan.choice.kind, holds ? SetChoice::Kind::kTwo : SetChoice::Kind::kOne);
+    if (holds) {
+      EXPECT_EQ(r.plan.set.lattice_generator,
+                MapLatticeGenerator(256, 1, how->ops.swap, how->ops.invert, how->ops.invert_y));
+    }
   }
 }
 

@@ -53,12 +53,12 @@ struct TableSection {
   uint32_t n = 0;
   std::string construction;  // "lattice", "tent-lattice", "optimized" or "net"
   TableSpace space = TableSpace::kOneDirection;
+  std::vector<uint32_t> generators;  // a lattice's: one per key held
+  std::vector<PointSet> sets;        // any other construction's: one per key held, N points each
   // The canonical keys held (CanonicalKeyIndex, ascending), where the section
   // holds only some: a render fetches or searches only the pairs its pixels
   // choose, of 4141. Empty: every key of the space.
   std::vector<uint32_t> keys;
-  std::vector<uint32_t> generators;  // a lattice's: one per key held
-  std::vector<PointSet> sets;        // any other construction's: one per key held, N points each
   // A lattice's points per key held, where a key's lattice has fewer than N
   // (a render's --lattice-size-span chooses N' in [N - span, N] per key; a
   // pixel spends at most N). Empty: N for every key.
