@@ -1,5 +1,9 @@
 #include "render/aligned_sets.h"
 
+#include <algorithm>
+
+#include "core/align/canonical.h"
+
 namespace alignset::render {
 
 std::set<std::pair<int, int>> NeededPairs(const std::vector<PixelDirection>& directions,
@@ -12,34 +16,29 @@ std::set<std::pair<int, int>> NeededPairs(const std::vector<PixelDirection>& dir
   return out;
 }
 
-const PointSet* AlignedSetTable::One(int served_deg) const {
-  if (served_deg < 0 || served_deg >= static_cast<int>(one.size())) return nullptr;
-  return one[served_deg].empty() ? nullptr : &one[served_deg];
-}
-
-const PointSet* AlignedSetTable::Two(int a, int b) const {
-  auto it = two.find({std::min(a, b), std::max(a, b)});
-  return it == two.end() ? nullptr : &it->second;
-}
-
-TableSet AlignedSetTable::Served(const SetChoice& c) const {
-  TableSet out;
-  const PointSet* points = nullptr;
-  uint32_t g = 0;
-  if (c.kind == SetChoice::Kind::kOne) {
-    points = One(c.a);
-    if (points && c.a < static_cast<int>(one_generator.size())) g = one_generator[c.a];
-  } else if (c.kind == SetChoice::Kind::kTwo) {
-    points = Two(c.a, c.b);
-    if (auto it = two_generator.find({std::min(c.a, c.b), std::max(c.a, c.b)}); points && it != two_generator.end()) {
-      g = it->second;
-    }
+std::vector<uint32_t> PairKeys(const std::set<std::pair<int, int>>& pairs) {
+  std::vector<uint32_t> keys;
+  for (const auto& [a, b] : pairs) {
+    const auto c = Canonicalize({static_cast<double>(a), static_cast<double>(b)});
+    keys.push_back(static_cast<uint32_t>(*CanonicalKeyIndex(c->key)));
   }
-  if (!points) return out;
-  out.n = static_cast<uint32_t>(points->size());
-  out.lattice_generator = g;
-  out.folded = g != 0 && folded;
-  out.points = points;
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+StatusOr<RenderSets> MakeRenderSets(uint32_t n, const std::string& construction, std::vector<TableSection> sections) {
+  RenderSets out;
+  out.n = n;
+  out.construction = construction;
+  std::erase_if(sections, [](const TableSection& s) { return s.keys.empty(); });
+  for (TableSection& s : sections) {
+    if (s.keys.size() == TableSpaceKeys(s.space)) s.keys.clear();  // every key: a whole section
+  }
+  if (sections.empty()) return out;
+  auto table = SetTable::FromSections(std::move(sections));
+  if (!table.ok()) return table.status();
+  out.table = std::move(*table);
   return out;
 }
 

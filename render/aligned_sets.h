@@ -1,8 +1,9 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
+#include <memory>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -10,7 +11,7 @@
 #include <alignset/set_table.h>
 
 #include "render/direction.h"
-#include "core/util/point_set.h"
+#include "core/util/status.h"
 
 namespace alignset::render {
 
@@ -25,26 +26,25 @@ inline PixelDirections RecipeDirections(const PixelDirection& d) {
 std::set<std::pair<int, int>> NeededPairs(const std::vector<PixelDirection>& directions,
                                           const AlignedPolicy& policy);
 
-// The aligned sets of one N a render reads: the 180 one-direction sets by
-// served degree, and the two-direction sets it needs by (a, b). Filled
-// before rendering (render/set_fetch.h fetches them from a server);
-// read-only while the render's threads run.
-struct AlignedSetTable {
+// The aligned sets a render reads: the sampler library's table
+// (<alignset/set_table.h>), holding the keys of one N and one construction
+// that the render's pixels choose (render/set_fetch.h fetches them from a
+// server, render/lattice_sets.h searches lattices here), aligned per pixel
+// as any renderer's would be. Read-only while the render's threads run.
+struct RenderSets {
+  std::shared_ptr<const SetTable> table;  // null: no pixel needs a set
   uint32_t n = 0;
-  std::vector<PointSet> one;                       // one[k], k in [0, 180); empty: not fetched
-  std::map<std::pair<int, int>, PointSet> two;     // by (a, b), a < b
-  // Tent-folded lattices (render/lattice_sets.h): the sets are the lattices
-  // unfolded; a pixel folds each point by 1 - |2u - 1| after its shift.
-  bool folded = false;
-  // A lattice table's generators beside its points (0: not a lattice), so
-  // that a pixel's points come from the sampler library (SetPixelPoints).
-  std::vector<uint32_t> one_generator;             // by served degree, like `one`
-  std::map<std::pair<int, int>, uint32_t> two_generator;
-  const PointSet* One(int served_deg) const;
-  const PointSet* Two(int a, int b) const;
-  // The served set of a choice as the sampler library reads it; points null
-  // when the table was not filled with it.
-  TableSet Served(const SetChoice& c) const;
+  std::string construction;  // the sections': "optimized", "lattice" or "tent-lattice"
 };
+
+// The canonical keys (core/align/canonical.h's CanonicalKeyIndex) of served
+// pairs (a, b), ascending: the keys a table must hold for them.
+std::vector<uint32_t> PairKeys(const std::set<std::pair<int, int>>& pairs);
+
+// A render's sets from the sections that hold its keys, each listing them
+// (a section listing every key of its space becomes whole; one listing none
+// is left out, and a render whose pixels need no key has no table).
+// INVALID_ARGUMENT as SetTable::FromSections.
+StatusOr<RenderSets> MakeRenderSets(uint32_t n, const std::string& construction, std::vector<TableSection> sections);
 
 }  // namespace alignset::render

@@ -1,5 +1,6 @@
 #include "render/lattice_sets.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <set>
@@ -19,7 +20,7 @@ Status CheckLatticeSizeSpan(uint32_t n, uint32_t size_span) {
   return Status::Ok();
 }
 
-StatusOr<AlignedSetTable> AlignedLatticeTable(
+StatusOr<RenderSets> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats,
     const std::function<void(double done, double total)>& progress, bool folded, uint32_t size_span) {
@@ -75,11 +76,6 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
   o.folded = folded;
   o.window_deg = window_deg;
   o.threads = threads;
-  AlignedSetTable table;
-  table.n = n;
-  table.folded = folded;
-  table.one.resize(180);
-  table.one_generator.assign(180, 0);
   // All keys in one call: the first stage's work per degree is shared by
   // every pair the degree is in.
   std::vector<std::vector<double>> keys;
@@ -101,24 +97,36 @@ StatusOr<AlignedSetTable> AlignedLatticeTable(
       if (entry.second.n == 0 || c.score < entry.second.score) entry.second = {size, c.generator, c.score};
     }
   }
-  for (const Served& s : served) {
-    const Chosen& key = by_key.at({s.how.key.phi1, s.how.key.phi2});
-    const uint32_t g =
-        MapLatticeGenerator(key.n, key.generator, s.how.ops.swap, s.how.ops.invert, s.how.ops.invert_y);
-    // One realization for every pixel: the per-pixel Cranley-Patterson
-    // shift is what decorrelates pixels (and keeps each unbiased). Folded,
-    // the lattice is stored unfolded and the sampler folds after the shift
-    // (the tent is even and mirrors to a half shift, so the generator of
-    // the mirrored key, N - g, folds to the same sets as g).
-    PointSet points = Rank1LatticePoints(key.n, g, 0);
-    if (s.one >= 0) {
-      table.one[s.one] = std::move(points);
-      table.one_generator[s.one] = g;
-    } else {
-      table.two[s.two] = std::move(points);
-      table.two_generator[s.two] = g;
-    }
+  // The table holds each key's own lattice; a pixel's lookup carries it
+  // onto the served degree or pair (MapLatticeGenerator). One realization
+  // for every pixel: the per-pixel Cranley-Patterson shift is what
+  // decorrelates pixels (and keeps each unbiased), and it goes before a
+  // tent-lattice's fold (the tent is even and mirrors to a half shift, so
+  // the mirrored key's generator N - g folds to the same sets as g).
+  TableSection whole, two;
+  for (TableSection* t : {&whole, &two}) {
+    t->n = n;
+    t->construction = folded ? "tent-lattice" : "lattice";
   }
+  whole.space = TableSpace::kOneDirection;
+  two.space = TableSpace::kTwoDirections;
+  std::map<uint32_t, const Chosen*> by_index[2];  // the keys held, ascending, per section
+  for (const Served& s : served) {
+    by_index[s.one >= 0 ? 0 : 1][static_cast<uint32_t>(*CanonicalKeyIndex(s.how.key))] =
+        &by_key.at({s.how.key.phi1, s.how.key.phi2});
+  }
+  for (int i = 0; i < 2; ++i) {
+    TableSection& t = i == 0 ? whole : two;
+    for (const auto& [index, chosen] : by_index[i]) {
+      t.keys.push_back(index);
+      t.generators.push_back(chosen->generator);
+      t.sizes.push_back(chosen->n);
+    }
+    if (std::all_of(t.sizes.begin(), t.sizes.end(), [n](uint32_t size) { return size == n; })) t.sizes.clear();
+  }
+  const std::string construction = whole.construction;
+  auto table = MakeRenderSets(n, construction, {std::move(whole), std::move(two)});
+  if (!table.ok()) return table.status();
   if (stats) {
     stats->one = ones.size();
     stats->two = twos.size();

@@ -22,8 +22,9 @@ namespace alignset::render {
 // shares each degree's work between the pairs it is in, and mapped onto
 // the degree or pair by the square's symmetries (MapLatticeGenerator), as
 // the service serves its lattices; the same key always gives the same
-// lattice. The table has the shape of the fetched optimized sets, so the
-// aligned sampler reads either.
+// lattice. The sets are a table of the sampler library (partial sections
+// of the keys searched, construction "lattice" or "tent-lattice"), as the
+// fetched sets are, so the aligned sampler reads either.
 struct LatticeTableStats {
   size_t one = 0, two = 0;  // served degrees and pairs in the table
   size_t searched = 0;      // generator searches: one per canonical key (and size)
@@ -33,14 +34,15 @@ struct LatticeTableStats {
 };
 //
 // folded (sampler aligned-tent-lattice): the generators are chosen for the
-// tent-folded lattice (AlignedLatticeOptions::folded) and the table is
-// marked folded: a pixel's shift goes before the fold.
+// tent-folded lattice (AlignedLatticeOptions::folded) and the table's
+// construction is "tent-lattice": a pixel's shift goes before the fold.
 //
 // size_span > 0: each key's lattice may have N' in [N - size_span, N] points
 // instead of N, the size whose chosen generator scores best (the score is
 // the exact variance of the window's edges with N' points, so fewer points
 // win only where their lattice lies better along the key's directions; ties
-// go to the larger). A pixel then spends at most N samples. The search
+// go to the larger; the table keeps each key's size). A pixel then spends
+// at most N samples. The search
 // costs size_span + 1 times as much. INVALID_ARGUMENT for a span that
 // leaves N' below 16.
 // OK for a size span AlignedLatticeTable takes at N (0 always; else
@@ -48,7 +50,7 @@ struct LatticeTableStats {
 // a bad span before any work.
 Status CheckLatticeSizeSpan(uint32_t n, uint32_t size_span);
 
-StatusOr<AlignedSetTable> AlignedLatticeTable(
+StatusOr<RenderSets> AlignedLatticeTable(
     uint32_t n, const std::vector<const std::vector<PixelDirection>*>& direction_maps,
     const AlignedPolicy& policy, double window_deg, int threads, LatticeTableStats* stats = nullptr,
     const std::function<void(double done, double total)>& progress = {}, bool folded = false,

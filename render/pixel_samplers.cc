@@ -122,9 +122,14 @@ class ScreenSpace : public PixelSampler {
 
 class Aligned : public PixelSampler {
  public:
-  Aligned(uint32_t n, const AlignedSetTable* sets, const std::vector<PixelDirection>* dirs,
-          AlignedPolicy policy, bool per_pixel_shift)
-      : n_(n), sets_(sets), dirs_(dirs), policy_(policy), shift_(per_pixel_shift) {}
+  Aligned(uint32_t n, const RenderSets& sets, const std::vector<PixelDirection>* dirs, AlignedPolicy policy,
+          bool per_pixel_shift)
+      : n_(n), table_(sets.table), construction_(sets.construction), dirs_(dirs), policy_(policy),
+        shift_(per_pixel_shift) {
+    if (table_) sections_ = table_->Resolve(sets.n, construction_);
+  }
+  Aligned(const Aligned&) = delete;  // sections_ names construction_
+  Aligned& operator=(const Aligned&) = delete;
   double Estimate(const PixelIntegrand& f, const PixelTask& t) const override {
     // The sampler library's points (<alignset/aligned_sampler.h>): the
     // pixel's own Owen-Sobol points without a direction, else the served
@@ -136,21 +141,21 @@ class Aligned : public PixelSampler {
       FallbackPixelPoints(t.seed, static_cast<uint32_t>(t.x), static_cast<uint32_t>(t.y), points);
       return Mean(f, points);
     }
-    const TableSet set = sets_->Served(c);
-    if (!set.points) return std::nan("");  // a set the table was not filled with: shows up, never hides
+    if (!table_) return std::nan("");
+    auto found = table_->Find(sections_, c);
+    if (!found.ok()) return std::nan("");  // a set the table was not filled with: shows up, never hides
+    const TableSet& set = *found;
     const Point2 s = PixelShift(HashCombine(t.seed, kSaltShift), shift_ ? t.x : 0, shift_ ? t.y : 0);
     points.resize(set.n);
     SetPixelPoints(set, s, points);
-    double sum = 0.0;
-    for (const Point2& p : points) {
-      sum += sets_->folded && set.lattice_generator == 0 ? f.Eval({TentFold(p.x), TentFold(p.y)}) : f.Eval({p.x, p.y});
-    }
-    return sum / static_cast<double>(points.size());
+    return Mean(f, points);
   }
 
  private:
   uint32_t n_;
-  const AlignedSetTable* sets_;
+  std::shared_ptr<const SetTable> table_;
+  std::string construction_;
+  SetTable::Sections sections_;  // resolved once, for every pixel
   const std::vector<PixelDirection>* dirs_;
   AlignedPolicy policy_;
   bool shift_;
@@ -322,14 +327,15 @@ StatusOr<std::unique_ptr<PixelSampler>> MakeBaseSampler(const SamplerConfig& c) 
     const bool tent = name.find("tent") != std::string::npos;
     const auto* dirs = exact ? c.exact : c.estimated;
     if (Status s = need_dirs(dirs); !s.ok()) return s;
-    if (!c.sets || c.sets->n != c.n || c.sets->folded != tent) {
+    const char* construction = tent ? "tent-lattice" : name.find("lattice") != std::string::npos ? "lattice" : "optimized";
+    if (!c.sets || c.sets->n != c.n || c.sets->construction != construction) {
       return Status::InvalidArgument(name + " needs the " +
                                      (tent ? "tent-folded lattice"
                                            : name.find("lattice") != std::string::npos ? "lattice" : "aligned") +
                                      " sets of N = " + std::to_string(c.n));
     }
     return std::unique_ptr<PixelSampler>(
-        new Aligned(c.n, c.sets, dirs, c.policy, c.per_pixel_shift));
+        new Aligned(c.n, *c.sets, dirs, c.policy, c.per_pixel_shift));
   }
   if (name == "line" || name == "segment") {
     if (c.orientation != LineOrientation::kRandom) {

@@ -48,7 +48,7 @@ struct SamplerConfig {
   // pmj02bn-sheared, line and segment; `exact` steers the *-exact variants.
   const std::vector<PixelDirection>* estimated = nullptr;
   const std::vector<PixelDirection>* exact = nullptr;
-  const AlignedSetTable* sets = nullptr;   // aligned*, aligned-lattice*
+  const RenderSets* sets = nullptr;        // aligned*, aligned-lattice*
   AlignedPolicy policy;                    // aligned*, aligned-lattice*
   bool per_pixel_shift = true;             // aligned: a CP shift per pixel (off: an ablation)
   const ShiftTile* tile = nullptr;         // screen-space-rank1

@@ -92,7 +92,7 @@ StatusOr<RenderSummary> RunRender(
       uses_estimate ? EstimateDirections(*scene, *estimator, r.seed, r.threads)
                     : std::vector<PixelDirection>(scene->size());
   c.estimated = &estimated;
-  AlignedSetTable table;
+  RenderSets table;
   ShiftTile tile;
   const bool tent = r.sampler == "aligned-tent-lattice" || r.sampler == "aligned-tent-lattice-exact";
   const bool lattice_sampler = r.sampler == "aligned-lattice" || r.sampler == "aligned-lattice-exact" || tent;
@@ -110,7 +110,8 @@ StatusOr<RenderSummary> RunRender(
     if (!fetched.ok()) return fetched.status();
     table = std::move(*fetched);
     c.sets = &table;
-    summary.note = "180 one-direction and " + std::to_string(pairs.size()) + " two-direction " +
+    summary.note = "46 one-direction keys and " + std::to_string(PairKeys(pairs).size()) + " pair keys (for " +
+                   std::to_string(pairs.size()) + " served pairs) of " +
                    (optimized_sampler ? "sets" : tent ? "tent-folded lattices" : "lattices") + " from " +
                    r.server.address;
   } else if (lattice_sampler) {

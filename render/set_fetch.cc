@@ -3,29 +3,30 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/optimize/aligned_lattice.h"
+#include "core/align/canonical.h"
 #include "core/optimize/construction.h"
 
 namespace alignset::render {
 namespace {
 
-// The request for a choice's set of N points made by `construction` ("" the
-// server's default); a fallback choice asks for none.
-SetRequest RequestFor(const SetChoice& c, uint32_t n, const std::string& construction) {
+// The request for a canonical key's set of N points made by `construction`
+// ("" the server's default): the key's own directions, which the server
+// serves unaligned (the identity carries a key onto itself).
+SetRequest KeyRequest(const CanonicalDirections& key, int count, uint32_t n, const std::string& construction) {
   SetRequest r;
   r.n = n;
   r.construction = construction;
-  r.directions_deg = {static_cast<double>(c.a)};
-  if (c.kind == SetChoice::Kind::kTwo) r.directions_deg.push_back(static_cast<double>(c.b));
+  r.directions_deg = {Phi1Degrees(key)};
+  if (count == 2) r.directions_deg.push_back(Phi2Degrees(key));
   return r;
 }
 
 }  // namespace
 
-StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
-                                           const std::set<std::pair<int, int>>& pairs,
-                                           const FetchProgressFn& progress,
-                                           const std::string& construction) {
+StatusOr<RenderSets> FetchAlignedSets(ServiceClient& client, uint32_t n,
+                                      const std::set<std::pair<int, int>>& pairs,
+                                      const FetchProgressFn& progress,
+                                      const std::string& construction) {
   const Construction* made = FindConstruction(construction);
   if (made == nullptr || !(made->optimized() || made->lattice())) {
     return Status::InvalidArgument("a render reads optimized sets or lattices, not '" + construction + "'");
@@ -62,48 +63,66 @@ StatusOr<AlignedSetTable> FetchAlignedSets(ServiceClient& client, uint32_t n,
     if (Status s = precompute(two, what + " 2-dir keys N=" + std::to_string(n)); !s.ok()) return s;
   }
 
-  AlignedSetTable table;
-  table.n = n;
-  table.folded = made->folded();
-  table.one.resize(180);
-  table.one_generator.assign(180, 0);
-  std::vector<SetRequest> items;
-  for (int deg = 0; deg < 180; ++deg) items.push_back(RequestFor({SetChoice::Kind::kOne, deg, 0}, n, construction));
-  for (const auto& [a, b] : pairs) items.push_back(RequestFor({SetChoice::Kind::kTwo, a, b}, n, construction));
+  // Every one-direction key and the pairs' keys, as the server stores them;
+  // the table aligns them per pixel.
+  TableSection whole, two;
+  for (TableSection* s : {&whole, &two}) {
+    s->n = n;
+    s->construction = std::string(made->name);
+  }
+  whole.space = TableSpace::kOneDirection;
+  two.space = TableSpace::kTwoDirections;
+  for (uint32_t k = 0; k < TableSpaceKeys(TableSpace::kOneDirection); ++k) whole.keys.push_back(k);
+  two.keys = PairKeys(pairs);
+  std::vector<std::pair<TableSection*, uint32_t>> wanted;  // (section, key)
+  for (TableSection* s : {&whole, &two}) {
+    for (uint32_t k : s->keys) wanted.push_back({s, k});
+  }
   const std::string stage = "fetch sets N=" + std::to_string(n);
-  for (size_t begin = 0; begin < items.size(); begin += kMaxBatchItems) {
-    const size_t end = std::min(items.size(), begin + kMaxBatchItems);
-    auto batch = client.GetAlignedSets({items.begin() + begin, items.begin() + end});
+  for (size_t begin = 0; begin < wanted.size(); begin += kMaxBatchItems) {
+    const size_t end = std::min(wanted.size(), begin + kMaxBatchItems);
+    std::vector<SetRequest> items;
+    for (size_t i = begin; i < end; ++i) {
+      const int count = wanted[i].first == &two ? 2 : 1;
+      items.push_back(KeyRequest(CanonicalKeyAt(count, wanted[i].second), count, n, construction));
+      // What the server serves for a key's own directions is the stored set
+      // only if the identity is what carries the key onto them.
+      const auto how = Canonicalize(items.back().directions_deg);
+      if (!how.ok() || how->ops != AlignOps{}) {
+        return Status::Internal("canonical key " + std::to_string(wanted[i].second) + " is not served as stored");
+      }
+    }
+    auto batch = client.GetAlignedSets(items);
     if (!batch.ok()) return batch.status();
-    if (batch->size() != end - begin) return Status::Internal("batch answered " + std::to_string(batch->size()) + " items of " + std::to_string(end - begin));
+    if (batch->size() != items.size()) {
+      return Status::Internal("batch answered " + std::to_string(batch->size()) + " items of " +
+                              std::to_string(items.size()));
+    }
     for (size_t i = begin; i < end; ++i) {
       BatchItem& item = (*batch)[i - begin];
       if (!item.status.ok()) return item.status;
+      std::vector<double> served(item.set.info.served_deg.begin(), item.set.info.served_deg.end()),
+          asked = items[i - begin].directions_deg;
+      std::sort(served.begin(), served.end());
+      std::sort(asked.begin(), asked.end());
+      if (served != asked) {
+        return Status::Internal("server served other directions for a canonical key");
+      }
+      TableSection& s = *wanted[i].first;
       if (lattice) {
-        // The served generator, aligned already: the same unfolded lattice
-        // the local table would hold.
         const uint32_t g = item.set.info.lattice_generator;
         if (g == 0) {
           return Status::FailedPrecondition("the server does not report lattice generators (update it)");
         }
-        item.set.points = Rank1LatticePoints(n, g, 0);
-      }
-      if (i < 180) {
-        const int deg = static_cast<int>(i);
-        if (item.set.info.served_deg.size() != 1 || item.set.info.served_deg[0] != deg) {
-          return Status::Internal("server served a different direction for " + std::to_string(deg) + " deg");
-        }
-        table.one[deg] = std::move(item.set.points);
-        if (lattice) table.one_generator[deg] = item.set.info.lattice_generator;
+        s.generators.push_back(g);
       } else {
-        const int a = static_cast<int>(items[i].directions_deg[0]), b = static_cast<int>(items[i].directions_deg[1]);
-        table.two[{a, b}] = std::move(item.set.points);
-        if (lattice) table.two_generator[{a, b}] = item.set.info.lattice_generator;
+        s.sets.push_back(std::move(item.set.points));
       }
     }
-    report(stage, static_cast<double>(end), static_cast<double>(items.size()), "");
+    report(stage, static_cast<double>(end), static_cast<double>(wanted.size()), "");
   }
-  return table;
+  const std::string name = whole.construction;  // read before the sections move
+  return MakeRenderSets(n, name, {std::move(whole), std::move(two)});
 }
 
 }  // namespace alignset::render

@@ -493,7 +493,7 @@ int Main(int argc, char** argv) {
         for (const auto& p : NeededPairs(dirs, v.policy)) pairs.insert(p);
       }
     }
-    AlignedSetTable table;
+    RenderSets table;
     bool need_sets = false;
     for (const Variant& v : variants) {
       need_sets |= v.sampler.rfind("aligned", 0) == 0 && !IsLattice(v);
@@ -514,13 +514,13 @@ int Main(int argc, char** argv) {
         return 1;
       }
       table = std::move(*fetched);
-      std::fprintf(stderr, "N=%u: 180 one-direction and %zu two-direction sets in %.1f s\n", n,
-                   pairs.size(), Seconds(t0));
+      std::fprintf(stderr, "N=%u: 46 one-direction keys and %zu pair keys (for %zu pairs) in %.1f s\n", n,
+                   PairKeys(pairs).size(), pairs.size(), Seconds(t0));
     }
     // The aligned lattices (and the tent-folded ones), chosen here for the
     // served degrees and pairs the lattice variants' direction maps need (no
     // server).
-    AlignedSetTable lattices, tents;
+    RenderSets lattices, tents;
     for (const bool folded : {false, true}) {
       std::vector<const std::vector<PixelDirection>*> maps;
       AlignedPolicy policy;

@@ -61,7 +61,7 @@ TEST(PrepassReuse, TheOwenSobolPrepassHandsOnItsMeanAndTheGridsDoNot) {
 // direction-less and takes the sampler's Owen-Sobol branch; the pre-pass
 // reused (count weights) or not, continued or not.
 std::unique_ptr<PixelSampler> DirectionLessLatticeSampler(const std::vector<PixelDirection>& dirs,
-                                                         const AlignedSetTable& empty, bool reuse,
+                                                         const RenderSets& empty, bool reuse,
                                                          bool continued) {
   SamplerConfig c{"aligned-lattice", empty.n};
   c.estimated = &dirs;
@@ -119,8 +119,9 @@ TEST(PrepassLattice, ADirectionLessPixelLeavesTheLatticePrepassOut) {
   const std::vector<PixelClass> classes = scene.Classes();
   const auto estimator = MakeSpectralEstimator(*ParsePrepass("edges64l"));
   std::vector<PixelDirection> dirs(scene.size());
-  AlignedSetTable empty;
+  RenderSets empty;
   empty.n = kN;
+  empty.construction = "lattice";
   const auto alone = DirectionLessLatticeSampler(dirs, empty, false, true);
   const auto continued = DirectionLessLatticeSampler(dirs, empty, true, true);
   const auto weighted = DirectionLessLatticeSampler(dirs, empty, true, false);
@@ -254,8 +255,9 @@ TEST(PrepassReuse, ContinuingTheSequenceBeatsWeightingOnSmoothPixels) {
   const std::vector<PixelClass> classes = scene.Classes();
   const auto estimator = MakeSpectralEstimator(*ParsePrepass("samples256c50"));
   std::vector<PixelDirection> dirs(scene.size());
-  AlignedSetTable empty;
+  RenderSets empty;
   empty.n = kN;
+  empty.construction = "lattice";
   enum Mode { kAlone, kWeighted, kContinued };
   double var[3] = {0.0, 0.0, 0.0};
   int counted = 0;

@@ -202,14 +202,16 @@ TEST(RenderSamplers, ALatticeTableWithASizeSpanGivesEachKeyItsBestScoringSize) {
   auto table = AlignedLatticeTable(kN, {&dirs}, AlignedPolicy{}, 1.0, 1, &st, {}, false, kSpan);
   ASSERT_TRUE(table.ok()) << table.status().message();
   EXPECT_EQ(st.searched % (kSpan + 1), 0u);
-  auto check = [&](const PointSet* set, const std::vector<double>& served) {
-    ASSERT_NE(set, nullptr);
-    const uint32_t size = static_cast<uint32_t>(set->size());
+  const SetTable::Sections sections = table->table->Resolve(kN, table->construction);
+  auto check = [&](const SetChoice& c, const std::vector<double>& served) {
+    auto set = table->table->Find(sections, c);
+    ASSERT_TRUE(set.ok()) << set.status().message();
+    const uint32_t size = set->n;
     ASSERT_GE(size, kN - kSpan);
     ASSERT_LE(size, kN);
-    const std::optional<uint32_t> g = LatticeGeneratorOf(*set, 0, false);
-    ASSERT_TRUE(g.has_value()) << "not a rank-1 lattice of " << size << " points";
-    auto score = AlignedLatticeScore(size, *g, served);
+    const uint32_t g = set->lattice_generator;
+    ASSERT_NE(g, 0u) << "not a lattice";
+    auto score = AlignedLatticeScore(size, g, served);
     ASSERT_TRUE(score.ok());
     for (uint32_t other = kN - kSpan; other <= kN; ++other) {
       auto best = ChooseAlignedLatticeGenerator(other, served);
@@ -218,8 +220,8 @@ TEST(RenderSamplers, ALatticeTableWithASizeSpanGivesEachKeyItsBestScoringSize) {
           << "served " << served[0] << " with " << size << " points; " << other << " scores better";
     }
   };
-  for (int a : {10, 30, 63, 97, 151}) check(table->One(a), {static_cast<double>(a)});
-  check(table->Two(20, 75), {20.0, 75.0});
+  for (int a : {10, 30, 63, 97, 151}) check({SetChoice::Kind::kOne, a, 0}, {static_cast<double>(a)});
+  check({SetChoice::Kind::kTwo, 20, 75}, {20.0, 75.0});
   EXPECT_GT(st.smaller, 0u);  // at these keys some size below N wins
   // The sampler reads sets of any size: unbiased on a pixel's edge.
   const Fixture& f = Get("shadow");
@@ -257,7 +259,7 @@ TEST(RenderSamplers, AlignedLatticesAreUnbiasedAndBeatOwenSobolOnStraightEdges) 
                                      {}, folded);
     ASSERT_TRUE(table.ok()) << table.status().message();
     EXPECT_GT(st.one, 0u) << scene;
-    EXPECT_EQ(table->folded, folded);
+    EXPECT_EQ(table->construction, folded ? "tent-lattice" : "lattice");
     double lattice_mse = 0.0, sobol_mse = 0.0;
     const std::string plain = folded ? "aligned-tent-lattice" : "aligned-lattice";
     // A table of the other kind is refused.
