@@ -29,6 +29,11 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
         ticket_(std::move(ticket)), t0_(t0) {}
 
   grpc::ServerWriteReactor<v1::WatchEvent>* Start() {
+    // What the handler's thread made here reaches the callbacks, which gRPC
+    // runs on other threads, through mu_, not only through gRPC's own
+    // ordering, which ThreadSanitizer cannot see. (A tick posted here waits
+    // for it; nothing holding the watch list or the scheduler takes mu_.)
+    std::lock_guard<std::mutex> lock(mu_);
     self_ = shared_from_this();
     service_->AddWatch(self_);
     std::weak_ptr<WatchCall> weak = self_;
@@ -89,6 +94,7 @@ class WatchCall final : public grpc::ServerWriteReactor<v1::WatchEvent>,
   }
 
   void OnDone() override {
+    { std::lock_guard<std::mutex> published(mu_); }  // after Start and every callback
     service_->RemoveWatch(this);
     ticket_.reset();
     service_->ReturnWaitingSlot();
