@@ -273,6 +273,11 @@ StatusOr<std::vector<TableSection>> DecodeTable(std::span<const uint8_t> bytes) 
     at += payload;
     sections.push_back(std::move(s));
   }
+  // One encoding a table: whole sections are written as version 1.
+  if (version != FormatVersion(sections)) {
+    return Status::InvalidArgument("format version " + std::to_string(version) + " for a table whose sections " +
+                                   (version == 1 ? "are partial" : "are all whole (written as version 1)"));
+  }
   return sections;
 }
 

@@ -76,7 +76,9 @@ PYBIND11_MODULE(_sampler, m) {
       .def("sections", [](const SetTable& t) {
         py::list out;
         for (const auto& s : t.sections()) {
-          out.append(py::make_tuple(s.n, s.construction, alignset::TableSpaceName(s.space), alignset::TableSpaceKeys(s.space)));
+          // The keys the section holds: its space's, or a partial section's list.
+          const size_t held = s.keys.empty() ? alignset::TableSpaceKeys(s.space) : s.keys.size();
+          out.append(py::make_tuple(s.n, s.construction, alignset::TableSpaceName(s.space), held));
         }
         return out;
       })

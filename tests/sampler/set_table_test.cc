@@ -297,7 +297,9 @@ TEST_F(SetTableTest, ASectionOfSomeKeysServesThemAsTheWholeSectionDoes) {
       ASSERT_TRUE(from_some.ok()) << from_some.status().message();
       EXPECT_EQ(from_some->n, from_whole->n);
       EXPECT_EQ(from_some->lattice_generator, from_whole->lattice_generator);
-      if (from_whole->points) EXPECT_EQ(*from_some->points, *from_whole->points);
+      if (from_whole->points) {
+        EXPECT_EQ(*from_some->points, *from_whole->points);
+      }
     }
   }
   const std::vector<uint8_t> v2 = (*some)->Serialize();
@@ -311,6 +313,11 @@ TEST_F(SetTableTest, ASectionOfSomeKeysServesThemAsTheWholeSectionDoes) {
   EXPECT_EQ((*some)->format_version(), 2u);
   EXPECT_EQ((*whole)->format_version(), 1u);
   EXPECT_EQ((*whole)->Serialize()[8], 1);
+  // One encoding: whole sections under a version-2 header are refused.
+  std::vector<uint8_t> relabelled = (*whole)->Serialize();
+  Put32(&relabelled, 8, 2);
+  Rechecksum(&relabelled);
+  ExpectRefused(relabelled, Status::Code::kInvalidArgument, "are all whole (written as version 1)");
   // Keys out of the space, repeated or out of order are refused, in memory
   // and in a file.
   for (std::vector<uint32_t> bad : {std::vector<uint32_t>{4141}, std::vector<uint32_t>{7, 7},
