@@ -7,7 +7,6 @@
 #include <alignset/pixel_shift.h>
 #include <alignset/set_choice.h>
 
-#include "core/optimize/aligned_lattice.h"
 #include "core/sampling/owen_sobol.h"
 #include "core/sampling/rank1_lattice.h"
 #include "core/sampling/samplers.h"
