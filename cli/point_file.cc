@@ -120,6 +120,11 @@ StatusOr<std::vector<PointSet>> ParseNpy(const std::string& data, const std::str
     for (size_t i : idx) flat = flat * dims[k++] + i;
     return array->values[flat];
   };
+  // A shape with no points holds no values, so the body's length does not
+  // bound its other dimensions: (10^10, 0, 2) would allocate 10^10 empty sets.
+  for (size_t d : dims) {
+    if (d == 0) return Status::InvalidArgument(path + ": shape " + Shape(dims) + " holds no points");
+  }
   std::vector<PointSet> sets;
   if (dims.size() == 2 && dims[1] == 2) {  // (N, 2): the documented layout
     PointSet s(dims[0]);

@@ -95,6 +95,22 @@ TEST(PointFileIn, FlatNpyIsAClearError) {
   std::remove(path.c_str());
 }
 
+// A zero in the shape leaves an empty body, which bounds nothing: the fuzzer's
+// (15544708095, 0, 2) once asked for 15 billion empty sets. Every such shape is
+// an error naming it, before anything is allocated per set.
+TEST(PointFileIn, AShapeWithAZeroIsRefusedBeforeItsOtherDimensionsAreAllocated) {
+  const std::string path = TempPath("zero.npy");
+  for (const std::vector<size_t>& shape : std::vector<std::vector<size_t>>{
+           {15544708095u, 0, 2}, {0, 2}, {2, 0}, {0, 5, 2}, {3, 0, 2}}) {
+    WriteNpy(path, "<f8", shape, false, "");
+    auto read = ReadPointSets(path);
+    ASSERT_FALSE(read.ok()) << NpyShapeText(shape);
+    EXPECT_NE(read.status().message().find(NpyShapeText(shape) + " holds no points"), std::string::npos)
+        << read.status().message();
+  }
+  std::remove(path.c_str());
+}
+
 TEST(PointFileIn, UtkTextWithSeveralSetsIsSeveralSetsOrAnErrorWhereOneIsExpected) {
   const std::string path = TempPath("multi.txt");
   std::ofstream(path) << "# header\n# another comment line\n0.1 0.2\n0.3 0.4\n#\n0.5 0.6\n"
