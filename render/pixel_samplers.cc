@@ -90,7 +90,7 @@ class PooledShifted : public PixelSampler {
 
 class Rank1Shifted : public PixelSampler {
  public:
-  explicit Rank1Shifted(uint32_t n) : n_(n) {
+  explicit Rank1Shifted(uint32_t n) {
     const uint32_t g = Rank1Generator(n);
     for (uint32_t k = 0; k < n; ++k) {
       base_.push_back({static_cast<double>(k) / n,
@@ -102,7 +102,6 @@ class Rank1Shifted : public PixelSampler {
   }
 
  private:
-  uint32_t n_;
   PointSet base_;
 };
 
