@@ -185,7 +185,8 @@ std::vector<uint32_t> SearchHead(uint32_t n, double floor) {
 }  // namespace
 
 StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uint64_t seed,
-                                            const std::vector<uint32_t>& folds) {
+                                            const std::vector<uint32_t>& folds,
+                                            const std::vector<bool>& tents) {
   if (n < 2 || n > 65536) return Status::InvalidArgument("joint lattice: N must be in [2, 65536], got " + std::to_string(n));
   if (dimensions < 1 || dimensions > kJointLatticeMaxDimensions) {
     return Status::InvalidArgument("joint lattice: dimensions must be in [1, " +
@@ -202,9 +203,21 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
                                      "], got " + std::to_string(h));
     }
   }
+  if (tents.size() > dimensions) {
+    return Status::InvalidArgument("joint lattice: " + std::to_string(tents.size()) + " tents for " +
+                                   std::to_string(dimensions) + " dimensions");
+  }
+  for (size_t d = 0; d < tents.size() && d < folds.size(); ++d) {
+    if (tents[d] && folds[d] != 1) {
+      return Status::InvalidArgument("joint lattice: dimension " + std::to_string(d) +
+                                     " is folded, so periodic, and cannot be tented too");
+    }
+  }
   JointLattice l;
   l.folds_.assign(dimensions, 1);
   std::copy(folds.begin(), folds.end(), l.folds_.begin());
+  l.tents_.assign(dimensions, false);
+  std::copy(tents.begin(), tents.end(), l.tents_.begin());
   l.n_ = n;
   l.seed_ = seed;
   l.z_ = {1};
@@ -237,7 +250,7 @@ double JointLattice::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
     double x = static_cast<double>(r) / n_ + Shift(pixel, d);
     if (x >= 1.0) x -= 1.0;
     const uint32_t h = folds_[d];
-    if (h == 1) return x;
+    if (h == 1) return tents_[d] ? std::min(1.0 - std::abs(2.0 * x - 1.0), std::nextafter(1.0, 0.0)) : x;
     // Which of the h copies: uniform per (pixel, sample), independent of x.
     const uint64_t j = Mix64(HashCombine(HashCombine(HashCombine(seed_, kSaltFold), pixel), i)) % h;
     const double u = (x + static_cast<double>(j)) / h;
