@@ -56,6 +56,13 @@ SAMPLERS = {
     # Over the film, the light sample and the wavelength (the BSDF's and the
     # light choice's dimensions padded).
     "joint-light-wavelength": ("aligned", {"align": "joint", "jointdimensions": [5, 6, 0]}),
+    # The same lattice, each pixel's shift followed by the tent (the folded
+    # wavelength left periodic).
+    "joint-tent": ("aligned", {"align": "joint", "randomize": "tent"}),
+    # The tent in the first BSDF sample only (the film and light squares
+    # shifted alone; tenting the lobe and light choice too gave the same
+    # images on the six path variants).
+    "joint-tent-bsdf": ("aligned", {"align": "joint", "tentdimensions": [8, 9]}),
 }
 # Pixels from a pixel's centre that pbrt's gaussian filter (radius 1.5) reaches.
 FILTER_REACH = 2

@@ -204,7 +204,12 @@ def main():
                 (' "integer jointdimensions" [ 5 99 ]', 64, "99", "a dimension pbrt's sampler cannot serve"),
                 (' "integer jointdimensions" [ 5 5 ]', 64, "twice", "a dimension listed twice"),
                 ("", 1, "at least 2", "one sample a pixel"),
-                (' "integer prepasssamples" [ 16 ]', 64, "pre-pass", "a pre-pass asked of joint")):
+                (' "integer prepasssamples" [ 16 ]', 64, "pre-pass", "a pre-pass asked of joint"),
+                (' "string randomize" [ "owen" ]', 64, "owen", "a randomization joint does not have"),
+                (' "integer tentdimensions" [ 11 ]', 64, "11", "a tent on a dimension not in the lattice"),
+                (' "integer tentdimensions" [ 0 ]', 64, "wavelength", "a tent on the folded wavelength"),
+                (' "string randomize" [ "tent" ] "integer tentdimensions" [ 8 ]', 64, "tents them all",
+                 "a tent both everywhere and on some dimensions")):
             refused(joint + params, spp, needle, what, renderer=pen)
 
     print(f"{len(failures)} failure(s)")

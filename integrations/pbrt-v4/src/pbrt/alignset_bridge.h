@@ -86,9 +86,11 @@ class JointPoints {
     // nullptr, with *error naming the problem, for an N or a dimension count
     // the library refuses. folds[d]: the library's fold of lattice dimension
     // d (the period 1 / folds[d] of the integrand along it; pbrt's wavelength
-    // sample has NSpectrumSamples).
+    // sample has NSpectrumSamples). tents[d]: lattice dimension d's shift is
+    // followed by the tent (the library's JointLattice).
     static std::unique_ptr<JointPoints> Create(int n, int dimensions, uint64_t seed,
                                                const std::vector<uint32_t> &folds,
+                                               const std::vector<bool> &tents,
                                                std::string *error);
     ~JointPoints();
     int Dimensions() const;

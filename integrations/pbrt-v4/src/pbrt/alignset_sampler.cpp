@@ -67,6 +67,7 @@ struct AlignedSampler::Shared {
     // (-1: padded by the library).
     std::unique_ptr<pbrt_alignset::JointPoints> joint;
     int jointOf[kJointMaxDimension];
+    int jointTents = 0;  // lattice dimensions tented
     int imageWidth = 0;  // the pixel index is y * imageWidth + x
 
     // Set by StartRender.
@@ -335,8 +336,8 @@ std::string AlignedSampler::ToString() const {
     const Shared &s = *shared;
     if (s.Joint())
         return StringPrintf("[ AlignedSampler align: joint samplesPerPixel: %d seed: %d "
-                            "latticeDimensions: %d ]",
-                            s.samplesPerPixel, s.seed, s.joint->Dimensions());
+                            "latticeDimensions: %d tented: %d ]",
+                            s.samplesPerPixel, s.seed, s.joint->Dimensions(), s.jointTents);
     return StringPrintf("[ AlignedSampler table: %s construction: %s samplesPerPixel: %d "
                         "prepass: %d main: %d seed: %d lightDimension: %d pairWavelength: %s ]",
                         s.tablePath, s.construction, s.samplesPerPixel, s.prepass, s.main,
@@ -378,9 +379,36 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
     std::vector<uint32_t> folds(dims.size() + 2, 1);
     if (s->jointOf[kWavelengthDimension] >= 0)
         folds[s->jointOf[kWavelengthDimension]] = uint32_t(NSpectrumSamples);
+    // "randomize": "shift" (a Cranley-Patterson shift a pixel) or "tent"
+    // (the shift, then the tent in every lattice dimension but the folded
+    // wavelength); "tentdimensions": the shift, then the tent in those
+    // sampler dimensions of "jointdimensions" only.
+    const std::string randomize = parameters.GetOneString("randomize", "shift");
+    if (randomize != "shift" && randomize != "tent")
+        ErrorExit(loc, "aligned: \"randomize\" \"%s\" is not \"shift\" or \"tent\".",
+                  randomize);
+    std::vector<bool> tents(dims.size() + 2, false);
+    if (randomize == "tent")
+        for (size_t k = 0; k < tents.size(); ++k)
+            tents[k] = folds[k] == 1;
+    const std::vector<int> tented = parameters.GetIntArray("tentdimensions");
+    if (!tented.empty() && randomize == "tent")
+        ErrorExit(loc, "aligned: \"tentdimensions\" names the tented dimensions of "
+                       "\"randomize\" \"shift\"; \"randomize\" \"tent\" tents them all.");
+    for (int d : tented) {
+        if (d < 0 || d >= kJointMaxDimension || s->jointOf[d] < 0)
+            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, which "
+                           "\"jointdimensions\" does not.", d);
+        if (folds[s->jointOf[d]] != 1)
+            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, the folded "
+                           "wavelength (periodic already).", d);
+        tents[s->jointOf[d]] = true;
+    }
+    s->jointTents = int(std::count(tents.begin(), tents.end(), true));
     std::string error;
     s->joint = pbrt_alignset::JointPoints::Create(t, int(dims.size()) + 2,
-                                                  Hash(s->seed, 0x6a6f696e74), folds, &error);
+                                                  Hash(s->seed, 0x6a6f696e74), folds, tents,
+                                                  &error);
     if (!s->joint)
         ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
                   t, int(dims.size()) + 2, error);
