@@ -10,13 +10,14 @@
 #   scripts/install-deps.sh --pbrt   the build's, plus pbrt-v4's (integrations/pbrt-v4)
 set -euo pipefail
 
-# Compilers and the libraries the CLI, the server and the client library link.
+# Compilers and the libraries the CLI, the server and the client library link
+# (and Boost's headers: Boost.Random's table of Sobol direction numbers).
 BUILD_PACKAGES=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   libeigen3-dev libfftw3-dev
   libsqlite3-dev
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc
-  libspdlog-dev libfmt-dev libcli11-dev
+  libspdlog-dev libfmt-dev libcli11-dev libboost-dev
   libssl-dev libmicrohttpd-dev
 )
 # GoogleTest and Google Benchmark, the tools the tests drive (sqlite3, openssl for the TLS
