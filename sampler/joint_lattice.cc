@@ -8,6 +8,7 @@
 
 #include "core/sampling/owen_sobol.h"
 #include "core/sampling/rank1_lattice.h"
+#include "core/sampling/sobol_directions.h"
 #include "core/util/hash.h"
 
 namespace alignset {
@@ -17,6 +18,7 @@ constexpr uint64_t kSaltShift = 11;
 constexpr uint64_t kSaltPad = 12;
 constexpr uint64_t kSaltFold = 13;
 constexpr uint32_t kMaxFold = 64;
+static_assert(kJointLatticeSobolDimensions <= kSobolMaxDimensions);
 // The joint search of the first four components costs up to (N / 2)^2 N
 // pair spacings (pruned); the greedy search needs it at N = 32, 40 and 44
 // only, of every N from 8 to 2100 (pbrt's nine dimensions).
@@ -220,6 +222,7 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
   std::copy(tents.begin(), tents.end(), l.tents_.begin());
   l.n_ = n;
   l.seed_ = seed;
+  l.padding_ = SobolDirectionNumbers(kJointLatticeSobolDimensions);
   l.z_ = {1};
   ExtendGenerator(n, dimensions, l.z_);
   // The greedy search fixes the film square first and may leave the light
@@ -256,9 +259,15 @@ double JointLattice::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
     const double u = (x + static_cast<double>(j)) / h;
     return u < 1.0 ? u : std::nextafter(1.0, 0.0);
   }
-  // Padding: a 1-D Owen-scrambled Sobol point of its own scramble, its index
-  // scrambled too, so that the padded dimensions pair at random.
   const uint64_t h = HashCombine(HashCombine(HashCombine(seed_, kSaltPad), pixel), d);
+  const size_t k = d - z_.size();
+  if (k < kJointLatticeSobolDimensions) {
+    // Padding: Sobol dimension k of point i, its own scramble.
+    const uint32_t v = NestedUniformScramble(SobolDigits(&padding_[k * kSobolDigits], i), static_cast<uint32_t>(h >> 32));
+    return static_cast<double>(v) * 0x1.0p-32;
+  }
+  // Past the sequence's dimensions: a 1-D Owen-scrambled Sobol point of its
+  // own scramble, its index scrambled too (paired at random).
   const uint32_t index = NestedUniformScramble(i, static_cast<uint32_t>(h));
   const uint32_t v = NestedUniformScramble(SobolDim0(index), static_cast<uint32_t>(h >> 32));
   return static_cast<double>(v) * 0x1.0p-32;

@@ -1,8 +1,9 @@
 // The joint rank-1 lattice over a camera sample's leading dimensions, against
 // its mathematical properties: each lattice dimension is the N strata, the
 // component-by-component generator is the best one for each new component,
-// every value is uniform (unbiased estimates, padding included), and joint
-// stratification beats the same dimensions paired at random.
+// every value is uniform (unbiased estimates, padding included), joint
+// stratification beats the same dimensions paired at random, and the padding
+// is one Sobol sequence, stratified jointly too.
 #include <alignset/joint_lattice.h>
 
 #include <gtest/gtest.h>
@@ -12,6 +13,7 @@
 #include <cstdint>
 #include <numbers>
 #include <numeric>
+#include <random>
 #include <vector>
 
 namespace alignset {
@@ -241,30 +243,97 @@ TEST(JointLattice, EveryPixelsEstimateIsUnbiasedPaddingIncluded) {
   EXPECT_NEAR(mean, Exact(), 3.0 * se + 1e-12) << "standard error " << se;
 }
 
+// The variance over pixels of the N-sample estimate of F's first three
+// dimensions, read from dimensions first_dim, first_dim + 1, first_dim + 2;
+// `pair_at_random`: each dimension's N values shuffled alone per pixel (the
+// same 1-D strata, paired at random).
+double Variance(const JointLattice& l, uint32_t first_dim, bool pair_at_random) {
+  constexpr uint32_t kPixels = 400;
+  const uint32_t n = l.n();
+  std::mt19937_64 rng(first_dim);
+  std::vector<double> column[3];
+  double sum = 0.0, sum2 = 0.0;
+  for (uint64_t p = 0; p < kPixels; ++p) {
+    for (uint32_t c = 0; c < 3; ++c) {
+      column[c].resize(n);
+      for (uint32_t i = 0; i < n; ++i) column[c][i] = l.Sample(p, i, first_dim + c);
+      if (pair_at_random) std::shuffle(column[c].begin(), column[c].end(), rng);
+    }
+    double est = 0.0;
+    for (uint32_t i = 0; i < n; ++i) {
+      double x[5] = {column[0][i], column[1][i], column[2][i], 0.5, 0.5};
+      est += F(x);
+    }
+    est /= n;
+    sum += est;
+    sum2 += est * est;
+  }
+  const double mean = sum / kPixels;
+  return sum2 / kPixels - mean * mean;
+}
+
 TEST(JointLattice, JointStratificationBeatsRandomPairing) {
   // The same integrand of the three lattice dimensions: the joint lattice
-  // against each dimension padded (stratified alone, paired at random).
-  constexpr uint32_t kN = 256, kPixels = 400;
-  auto l = JointLattice::Create(kN, 3, 9);
+  // against its own dimensions paired at random.
+  auto l = JointLattice::Create(256, 3, 9);
   ASSERT_TRUE(l.ok());
-  auto variance = [&](uint32_t first_dim) {
-    double sum = 0.0, sum2 = 0.0;
-    for (uint64_t p = 0; p < kPixels; ++p) {
-      double est = 0.0;
+  const double joint = Variance(*l, 0, false), paired = Variance(*l, 0, true);
+  EXPECT_LT(joint, 0.25 * paired) << "joint " << joint << ", paired at random " << paired;
+}
+
+// The padded dimensions are one Sobol sequence indexed by the sample, each
+// dimension Owen-scrambled per pixel: the first two padded dimensions are a
+// (0, m, 2)-net in every pixel (Sobol's first two dimensions are), and three
+// padded dimensions integrate jointly, where 1-D points paired at random
+// would not.
+TEST(JointLattice, ThePaddingIsOneSobolSequenceStratifiedJointly) {
+  constexpr uint32_t kN = 256, kM = 8;
+  auto l = JointLattice::Create(kN, 3, 21);
+  ASSERT_TRUE(l.ok());
+  for (uint64_t pixel : {0ull, 5ull, 99999ull}) {
+    for (uint32_t a = 0; a <= kM; ++a) {  // boxes 2^-a x 2^-(m - a)
+      std::vector<int> hit(kN, 0);
       for (uint32_t i = 0; i < kN; ++i) {
-        double x[5] = {l->Sample(p, i, first_dim), l->Sample(p, i, first_dim + 1), l->Sample(p, i, first_dim + 2),
-                       0.5, 0.5};
-        est += F(x);
+        const uint32_t bx = static_cast<uint32_t>(l->Sample(pixel, i, 3) * (1u << a));
+        const uint32_t by = static_cast<uint32_t>(l->Sample(pixel, i, 4) * (1u << (kM - a)));
+        ++hit[(bx << (kM - a)) | by];
       }
-      est /= kN;
-      sum += est;
-      sum2 += est * est;
+      EXPECT_TRUE(std::all_of(hit.begin(), hit.end(), [](int h) { return h == 1; }))
+          << "pixel " << pixel << ", boxes of 2^-" << a << " x 2^-" << kM - a;
     }
-    const double mean = sum / kPixels;
-    return sum2 / kPixels - mean * mean;
-  };
-  const double joint = variance(0), padded = variance(3);
-  EXPECT_LT(joint, 0.25 * padded) << "joint " << joint << ", padded " << padded;
+  }
+  // Scrambled per pixel and dimension: no two pixels or dimensions alike.
+  EXPECT_NE(l->Sample(0, 7, 3), l->Sample(1, 7, 3));
+  EXPECT_NE(l->Sample(0, 7, 3), l->Sample(0, 7, 4));
+  const double padded = Variance(*l, 3, false), paired = Variance(*l, 3, true);
+  EXPECT_LT(padded, 0.25 * paired) << "padded " << padded << ", paired at random " << paired;
+}
+
+TEST(JointLattice, PaddingPastTheSobolDimensionsStaysUniform) {
+  // Past kJointLatticeSobolDimensions the padding is 1-D points paired at
+  // random: still in [0, 1), still the mean of F, deterministic.
+  constexpr uint32_t kN = 64, kPixels = 3000;
+  auto l = JointLattice::Create(kN, 2, 3);
+  ASSERT_TRUE(l.ok());
+  const uint32_t past = 2 + kJointLatticeSobolDimensions;
+  double sum = 0.0, sum2 = 0.0;
+  for (uint64_t p = 0; p < kPixels; ++p) {
+    double est = 0.0;
+    for (uint32_t i = 0; i < kN; ++i) {
+      double x[5];
+      for (uint32_t d = 0; d < 5; ++d) {
+        x[d] = l->Sample(p, i, past + d);
+        ASSERT_TRUE(x[d] >= 0.0 && x[d] < 1.0);
+      }
+      est += F(x);
+    }
+    est /= kN;
+    sum += est;
+    sum2 += est * est;
+  }
+  const double mean = sum / kPixels, se = std::sqrt((sum2 / kPixels - mean * mean) / kPixels);
+  EXPECT_NEAR(mean, Exact(), 3.0 * se + 1e-12) << "standard error " << se;
+  EXPECT_EQ(l->Sample(7, 9, past + 1), JointLattice::Create(kN, 2, 3)->Sample(7, 9, past + 1));
 }
 
 // A folded dimension (h = 4, pbrt's wavelength sample): frac(h u) is the

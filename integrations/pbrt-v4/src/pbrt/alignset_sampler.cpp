@@ -67,6 +67,12 @@ struct AlignedSampler::Shared {
     // (-1: padded by the library).
     std::unique_ptr<pbrt_alignset::JointPoints> joint;
     int jointOf[kJointMaxDimension];
+    // kJoint: the lattice dimensions asked for, and each sampler dimension's
+    // place among the padded ones (the library pads dimension jointAsked + k
+    // with its padding's dimension k, so the first padded sampler dimensions
+    // get the padding's best).
+    int jointAsked = 0;
+    int jointPadOf[kJointMaxDimension];
     int jointTents = 0;  // lattice dimensions tented
     int imageWidth = 0;  // the pixel index is y * imageWidth + x
 
@@ -83,8 +89,12 @@ struct AlignedSampler::Shared {
     // Sampler dimension `dim` of sample i under kJoint: its lattice dimension,
     // or the library's padding past any lattice dimension.
     Float JointSample(uint64_t pixel, int i, int dim) const {
-        const bool inLattice = dim >= 0 && dim < kJointMaxDimension && jointOf[dim] >= 0;
-        return JointPoint(pixel, i, inLattice ? uint32_t(jointOf[dim]) : uint32_t(16 + (dim + 2)));
+        if (dim < kJointMaxDimension)
+            return JointPoint(pixel, i, uint32_t(jointOf[dim] >= 0 ? jointOf[dim] : jointPadOf[dim]));
+        // Past kJointMaxDimension every sampler dimension is padded, after
+        // the jointAsked - 2 of "jointdimensions": jointAsked + dim -
+        // (jointAsked - 2).
+        return JointPoint(pixel, i, uint32_t(dim + 2));
     }
     bool AlignsFilm() const {
         return aligned == Aligned::kFilmAndLight || aligned == Aligned::kFilm;
@@ -405,6 +415,9 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
         tents[s->jointOf[d]] = true;
     }
     s->jointTents = int(std::count(tents.begin(), tents.end(), true));
+    s->jointAsked = int(dims.size()) + 2;
+    for (int d = 0, k = 0; d < kJointMaxDimension; ++d)
+        s->jointPadOf[d] = s->jointOf[d] >= 0 ? -1 : s->jointAsked + k++;
     std::string error;
     s->joint = pbrt_alignset::JointPoints::Create(t, int(dims.size()) + 2,
                                                   Hash(s->seed, 0x6a6f696e74), folds, tents,
