@@ -323,8 +323,9 @@ def main():
                     help="the reference's spp instead (at least 16x the highest): a rerun of some spp "
                          "against the references of a larger run")
     ap.add_argument("--merge", action="store_true",
-                    help="add this run's spp to the tables already in --out (same scenes and reference), "
-                         "replacing what they had at those spp")
+                    help="add this run's samplers at this run's spp to the tables already in --out (same "
+                         "scenes and reference), replacing what they had for those samplers at those spp; the "
+                         "other samplers' runs (and their times) stay")
     ap.add_argument("--edge-tau", type=float, default=0.03)
     ap.add_argument("--ref-cache", default="build/pbrt-v4/references",
                     help="keeps each reference, keyed by the scene's text, resolution and spp ('' for none)")
@@ -364,9 +365,11 @@ def main():
                     before = json.load(f)
                 if before["ref_spp"] != result["ref_spp"] or before["edge_pixels"] != result["edge_pixels"]:
                     raise RuntimeError(f"{old}: another reference; --merge needs the same (--ref-spp {before['ref_spp']})")
-                result["runs"] = sorted([x for x in before["runs"] if x["spp"] not in args.spp] + result["runs"],
-                                        key=lambda x: (x["spp"], args.samplers.index(x["sampler"])
-                                                       if x["sampler"] in args.samplers else 99))
+                order = BASELINES + [x for x in args.samplers if x not in BASELINES]
+                kept = [x for x in before["runs"] if x["spp"] not in args.spp or x["sampler"] not in args.samplers]
+                result["runs"] = sorted(kept + result["runs"],
+                                        key=lambda x: (x["spp"], order.index(x["sampler"])
+                                                       if x["sampler"] in order else 99))
             with open(os.path.join(args.out, name + ".json"), "w") as f:
                 json.dump(result, f, indent=1)
             with open(os.path.join(args.out, name + ".md"), "w") as f:
