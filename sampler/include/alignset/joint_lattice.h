@@ -30,8 +30,8 @@
 // path's later bounces are then stratified jointly, as pbrt's "sobol"
 // stratifies them, where 1-D points paired at random (the padding before)
 // left their joint projections at Monte Carlo's rate: measured in pbrt at
-// 1024 samples a pixel with "path", 1.14x less edge error on the Cornell
-// box, 1.08x on the rect-lit room (docs/pbrt.md). Past
+// 1024 samples a pixel with "path", 1.13x less edge error on the Cornell
+// box, 1.06x on the rect-lit room (docs/pbrt.md, "The padding"). Past
 // kJointLatticeSobolDimensions, 1-D Owen-scrambled Sobol points paired at
 // random. Every value is uniform on [0, 1) over the seed, so every estimate
 // is unbiased; deterministic in (seed, pixel, i, d); no allocation after
