@@ -222,25 +222,37 @@ double Exact() {
   return a * b * (4.0 / 3.0) * 1.0 * (1.5 - 1.0 / 3.0);
 }
 
-TEST(JointLattice, EveryPixelsEstimateIsUnbiasedPaddingIncluded) {
-  constexpr uint32_t kN = 64, kPixels = 4000;
-  auto l = JointLattice::Create(kN, 3, 5);
-  ASSERT_TRUE(l.ok());
+// The mean over `pixels` pixels of the N-sample estimate of F over
+// dimensions first_dim .. first_dim + 4, and its standard error; every value
+// read is checked to lie in [0, 1).
+struct PixelMean {
+  double mean, standard_error;
+};
+PixelMean MeanOverPixels(const JointLattice& l, uint32_t first_dim, uint64_t pixels) {
   double sum = 0.0, sum2 = 0.0;
-  for (uint64_t p = 0; p < kPixels; ++p) {
+  for (uint64_t p = 0; p < pixels; ++p) {
     double est = 0.0;
-    for (uint32_t i = 0; i < kN; ++i) {
+    for (uint32_t i = 0; i < l.n(); ++i) {
       double x[5];
-      for (uint32_t d = 0; d < 5; ++d) x[d] = l->Sample(p, i, d);
+      for (uint32_t d = 0; d < 5; ++d) {
+        x[d] = l.Sample(p, i, first_dim + d);
+        EXPECT_TRUE(x[d] >= 0.0 && x[d] < 1.0) << "dimension " << first_dim + d;
+      }
       est += F(x);
     }
-    est /= kN;
+    est /= l.n();
     sum += est;
     sum2 += est * est;
   }
-  const double mean = sum / kPixels, var = sum2 / kPixels - mean * mean;
-  const double se = std::sqrt(var / kPixels);
-  EXPECT_NEAR(mean, Exact(), 3.0 * se + 1e-12) << "standard error " << se;
+  const double mean = sum / pixels;
+  return {mean, std::sqrt((sum2 / pixels - mean * mean) / pixels)};
+}
+
+TEST(JointLattice, EveryPixelsEstimateIsUnbiasedPaddingIncluded) {
+  auto l = JointLattice::Create(64, 3, 5);
+  ASSERT_TRUE(l.ok());
+  const PixelMean m = MeanOverPixels(*l, 0, 4000);
+  EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
 }
 
 // The variance over pixels of the N-sample estimate of F's first three
@@ -312,27 +324,12 @@ TEST(JointLattice, ThePaddingIsOneSobolSequenceStratifiedJointly) {
 TEST(JointLattice, PaddingPastTheSobolDimensionsStaysUniform) {
   // Past kJointLatticeSobolDimensions the padding is 1-D points paired at
   // random: still in [0, 1), still the mean of F, deterministic.
-  constexpr uint32_t kN = 64, kPixels = 3000;
+  constexpr uint32_t kN = 64;
   auto l = JointLattice::Create(kN, 2, 3);
   ASSERT_TRUE(l.ok());
   const uint32_t past = 2 + kJointLatticeSobolDimensions;
-  double sum = 0.0, sum2 = 0.0;
-  for (uint64_t p = 0; p < kPixels; ++p) {
-    double est = 0.0;
-    for (uint32_t i = 0; i < kN; ++i) {
-      double x[5];
-      for (uint32_t d = 0; d < 5; ++d) {
-        x[d] = l->Sample(p, i, past + d);
-        ASSERT_TRUE(x[d] >= 0.0 && x[d] < 1.0);
-      }
-      est += F(x);
-    }
-    est /= kN;
-    sum += est;
-    sum2 += est * est;
-  }
-  const double mean = sum / kPixels, se = std::sqrt((sum2 / kPixels - mean * mean) / kPixels);
-  EXPECT_NEAR(mean, Exact(), 3.0 * se + 1e-12) << "standard error " << se;
+  const PixelMean m = MeanOverPixels(*l, past, 3000);
+  EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
   EXPECT_EQ(l->Sample(7, 9, past + 1), JointLattice::Create(kN, 2, 3)->Sample(7, 9, past + 1));
 }
 
