@@ -28,6 +28,13 @@ constexpr uint32_t kHeadSearchMaxN = 4096;
 // kernel of smoothness 2 at a lattice coordinate x in [0, 1).
 double Kernel(double x) { return 2.0 * std::numbers::pi * std::numbers::pi * (x * x - x + 1.0 / 6.0); }
 
+// Every lattice pads with the same sequence: its direction numbers are made
+// once for the process (thread-safe static initialisation), not per Create.
+const std::vector<uint32_t>& PaddingDirections() {
+  static const std::vector<uint32_t> table = SobolDirectionNumbers(kJointLatticeSobolDimensions);
+  return table;
+}
+
 double Weight(size_t j) { return std::pow(kJointLatticeWeightDecay, static_cast<double>(j)); }
 
 double Unit(uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
@@ -222,7 +229,7 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
   std::copy(tents.begin(), tents.end(), l.tents_.begin());
   l.n_ = n;
   l.seed_ = seed;
-  l.padding_ = SobolDirectionNumbers(kJointLatticeSobolDimensions);
+  l.padding_ = PaddingDirections().data();
   l.z_ = {1};
   ExtendGenerator(n, dimensions, l.z_);
   // The greedy search fixes the film square first and may leave the light

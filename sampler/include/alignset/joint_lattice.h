@@ -72,7 +72,8 @@ inline constexpr double kJointLatticePairSlack = 0.8;
 inline constexpr double kJointLatticePairFloor = 0.3;
 inline constexpr uint32_t kJointLatticeMaxDimensions = 16;
 // The padded dimensions that are one jointly indexed Sobol sequence (a
-// depth-100 path in pbrt; 128 KiB of direction numbers a lattice).
+// depth-100 path in pbrt; 128 KiB of direction numbers, one table that every
+// lattice shares).
 inline constexpr uint32_t kJointLatticeSobolDimensions = 1024;
 
 class JointLattice {
@@ -111,8 +112,9 @@ class JointLattice {
   std::vector<uint32_t> z_;
   std::vector<uint32_t> folds_;  // one per dimension asked for (1: not folded)
   std::vector<bool> tents_;      // one per dimension asked for
-  // The padding's Sobol direction numbers, kSobolDigits a dimension.
-  std::vector<uint32_t> padding_;
+  // The padding's Sobol direction numbers, kSobolDigits a dimension: the
+  // process's one table, made at the first Create.
+  const uint32_t* padding_ = nullptr;
 };
 
 // The weighted P_2 criterion of the rank-1 lattice of generator z with N

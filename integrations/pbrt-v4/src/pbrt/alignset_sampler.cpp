@@ -67,11 +67,10 @@ struct AlignedSampler::Shared {
     // (-1: padded by the library).
     std::unique_ptr<pbrt_alignset::JointPoints> joint;
     int jointOf[kJointMaxDimension];
-    // kJoint: the lattice dimensions asked for, and each sampler dimension's
-    // place among the padded ones (the library pads dimension jointAsked + k
-    // with its padding's dimension k, so the first padded sampler dimensions
-    // get the padding's best).
-    int jointAsked = 0;
+    // kJoint: each padded sampler dimension's library dimension (the library
+    // pads dimension A + k, A the lattice dimensions asked for, with its
+    // padding's dimension k, so the first padded sampler dimensions get the
+    // padding's best).
     int jointPadOf[kJointMaxDimension];
     int jointTents = 0;  // lattice dimensions tented
     int imageWidth = 0;  // the pixel index is y * imageWidth + x
@@ -92,8 +91,7 @@ struct AlignedSampler::Shared {
         if (dim < kJointMaxDimension)
             return JointPoint(pixel, i, uint32_t(jointOf[dim] >= 0 ? jointOf[dim] : jointPadOf[dim]));
         // Past kJointMaxDimension every sampler dimension is padded, after
-        // the jointAsked - 2 of "jointdimensions": jointAsked + dim -
-        // (jointAsked - 2).
+        // the A - 2 of "jointdimensions": A + dim - (A - 2).
         return JointPoint(pixel, i, uint32_t(dim + 2));
     }
     bool AlignsFilm() const {
@@ -415,16 +413,16 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
         tents[s->jointOf[d]] = true;
     }
     s->jointTents = int(std::count(tents.begin(), tents.end(), true));
-    s->jointAsked = int(dims.size()) + 2;
+    const int asked = int(dims.size()) + 2;  // the film's two and "jointdimensions"
     for (int d = 0, k = 0; d < kJointMaxDimension; ++d)
-        s->jointPadOf[d] = s->jointOf[d] >= 0 ? -1 : s->jointAsked + k++;
+        s->jointPadOf[d] = s->jointOf[d] >= 0 ? -1 : asked + k++;
     std::string error;
-    s->joint = pbrt_alignset::JointPoints::Create(t, int(dims.size()) + 2,
+    s->joint = pbrt_alignset::JointPoints::Create(t, asked,
                                                   Hash(s->seed, 0x6a6f696e74), folds, tents,
                                                   &error);
     if (!s->joint)
         ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
-                  t, int(dims.size()) + 2, error);
+                  t, asked, error);
     return alloc.new_object<AlignedSampler>(std::move(s));
 }
 
