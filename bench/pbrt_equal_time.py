@@ -176,6 +176,39 @@ def measure(r, scene_dir, scene, mode, args, log):
     return result, images
 
 
+def retime(r, old, scene_dir, scene, mode, args, log):
+    """--retime: the frame times of args.samplers at args.spp measured again
+    in the stored table of (scene, mode); the errors kept, each alignset
+    sampler's seed-1 image checked against the old binary's."""
+    name = f"{scene}_{mode}"
+    path = os.path.join(args.out, name + ".json")
+    with open(path) as f:
+        result = json.load(f)
+    text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
+    for spp in args.spp:
+        secs = {sampler: [] for sampler in args.samplers}
+        for k in range(args.seeds):
+            for sampler in args.samplers:
+                img, s = r.render(text, sampler, spp, 1 + k)
+                secs[sampler].append(s)
+                if k == 0 and SAMPLERS[sampler][0] == "aligned":  # pbrt's own samplers did not change
+                    before, _ = old.render(text, sampler, spp, 1)
+                    if not np.array_equal(img, before):
+                        raise RuntimeError(f"{name} {sampler} {spp} spp: the image differs from {args.retime}'s; "
+                                           "--retime keeps errors only where the images are the same")
+        for sampler in args.samplers:
+            runs = [x for x in result["runs"] if x["sampler"] == sampler and x["spp"] == spp]
+            if len(runs) != 1:
+                raise RuntimeError(f"{path}: no run of {sampler} at {spp} spp to retime")
+            was = runs[0]["seconds"]
+            runs[0]["seconds"] = float(np.median(secs[sampler]))
+            log(f"  {name} {sampler:>8} {spp:>5} spp: {was:.2f} s -> {runs[0]['seconds']:.2f} s (same image)")
+    with open(path, "w") as f:
+        json.dump(result, f, indent=1)
+    with open(os.path.join(args.out, name + ".md"), "w") as f:
+        f.write(table(result, args.subject) + "\n")
+
+
 def equal_time(runs, baseline, seconds, region):
     pts = sorted((x["seconds"], x[region]) for x in runs if x["sampler"] == baseline)
     return loglog_at([t for t, _ in pts], [e for _, e in pts], seconds)
@@ -326,6 +359,12 @@ def main():
                     help="add this run's samplers at this run's spp to the tables already in --out (same "
                          "scenes and reference), replacing what they had for those samplers at those spp; the "
                          "other samplers' runs (and their times) stay")
+    ap.add_argument("--retime", metavar="OLD_PBRT", default="",
+                    help="re-measure only the frame times of --samplers at --spp in the tables already in "
+                         "--out (every sampler in turn, seed by seed, as a full run times them) and keep their "
+                         "errors: for a change to a sampler's speed that leaves its images as they were. "
+                         "OLD_PBRT is the binary the tables were measured with; each alignset sampler's seed-1 "
+                         "render at each spp must be byte for byte OLD_PBRT's, or the run stops")
     ap.add_argument("--edge-tau", type=float, default=0.03)
     ap.add_argument("--ref-cache", default="build/pbrt-v4/references",
                     help="keeps each reference, keyed by the scene's text, resolution and spp ('' for none)")
@@ -353,6 +392,15 @@ def main():
 
     with tempfile.TemporaryDirectory() as work:
         r = Renderer(os.path.abspath(args.pbrt), args.res, work, args.threads, os.path.abspath(args.table))
+        if args.retime:
+            old = Renderer(os.path.abspath(args.retime), args.res, work, args.threads, os.path.abspath(args.table))
+            old.count = 1 << 20  # its own file names
+            for v in args.variants.split(","):
+                scene, mode = (v.split(":") + ["direct"])[:2]
+                retime(r, old, os.path.abspath(args.scenes), scene, mode, args, log)
+            summary(args.out, args.subject)
+            log(f"wrote {args.out}/summary.md")
+            return 0
         for v in args.variants.split(","):
             scene, mode = (v.split(":") + ["direct"])[:2]
             if mode not in MODES:

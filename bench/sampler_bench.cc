@@ -2,10 +2,12 @@
 // pre-pass points, the plan from a 3 x 3 or 5 x 5 block of pre-pass values,
 // the main points and the estimate: everything but the integrand's
 // evaluations) at N = 256, 1024 and 4096, on one thread and on two; the
-// table file's size for every space, construction and N; and its load time.
+// table file's size for every space, construction and N; and its load time;
+// the joint lattice's cost a value, direct and through a pixel's view.
 //
 //   build/bench/sampler_bench                        # sizes, then every benchmark
 //   build/bench/sampler_bench --benchmark_filter=Pixel
+//   build/bench/sampler_bench --benchmark_filter=JointLattice
 //
 // allocs/pixel counts the allocations of the whole process while a pixel's
 // calls run, after a warm-up pass over the image with the thread's Scratch.
@@ -15,6 +17,7 @@
 // holds. The pixels are a straight edge's (a direction found, a set read)
 // and a smooth gradient's (none found, the Owen-Sobol fallback), half each.
 #include <alignset/aligned_sampler.h>
+#include <alignset/joint_lattice.h>
 #include <alignset/set_table.h>
 #include <benchmark/benchmark.h>
 
@@ -148,6 +151,36 @@ void BM_PixelBookkeeping(benchmark::State& state) {
   state.counters["pixels/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_PixelBookkeeping)->Arg(256)->Arg(1024)->Arg(4096)->Threads(1)->Threads(2)->UseRealTime();
+
+// The joint lattice's values as pbrt asks for them: a pixel's wave of 64
+// samples in a row, each sample's first 40 dimensions (pbrt's nine in the
+// lattice, the wavelength folded, the rest padded: a path of a few
+// bounces), through JointLattice::Sample (every value hashes its shift or
+// scramble) or a JointLatticePixel (the pixel's hashes made once). A value's
+// cost is the time over items.
+void BM_JointLatticeValues(benchmark::State& state) {
+  const uint32_t n = static_cast<uint32_t>(state.range(0));
+  const bool view = state.range(1) != 0;
+  const auto lattice = JointLattice::Create(n, 9, 3, {1, 1, 1, 1, 4});
+  constexpr uint32_t kWave = 64, kDimensions = 40;
+  JointLatticePixel pixel_view;
+  uint64_t pixel = 0;
+  uint32_t wave_start = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    if (view) pixel_view.Reset(*lattice, pixel);
+    for (uint32_t i = wave_start; i < wave_start + kWave; ++i) {
+      for (uint32_t d = 0; d < kDimensions; ++d) sum += view ? pixel_view.Sample(i, d) : lattice->Sample(pixel, i, d);
+    }
+    if (++pixel == 160 * 160) {
+      pixel = 0;
+      wave_start = (wave_start + kWave) % n;
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kWave * kDimensions);
+}
+BENCHMARK(BM_JointLatticeValues)->ArgNames({"N", "view"})->ArgsProduct({{256, 1024}, {0, 1}});
 
 void BM_TableLoad(benchmark::State& state) {
   const uint32_t n = static_cast<uint32_t>(state.range(0));

@@ -228,6 +228,7 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
   l.tents_.assign(dimensions, false);
   std::copy(tents.begin(), tents.end(), l.tents_.begin());
   l.n_ = n;
+  l.mask_ = (n & (n - 1)) == 0 ? n - 1 : 0;
   l.seed_ = seed;
   l.padding_ = PaddingDirections().data();
   l.z_ = {1};
@@ -254,30 +255,65 @@ double JointLattice::Shift(uint64_t pixel, uint32_t d) const {
   return Unit(Mix64(HashCombine(HashCombine(HashCombine(seed_, kSaltShift), pixel), d)));
 }
 
-double JointLattice::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
-  if (d < z_.size()) {
-    const uint32_t r = static_cast<uint32_t>((static_cast<uint64_t>(i) * z_[d]) % n_);
-    double x = static_cast<double>(r) / n_ + Shift(pixel, d);
-    if (x >= 1.0) x -= 1.0;
-    const uint32_t h = folds_[d];
-    if (h == 1) return tents_[d] ? std::min(1.0 - std::abs(2.0 * x - 1.0), std::nextafter(1.0, 0.0)) : x;
-    // Which of the h copies: uniform per (pixel, sample), independent of x.
-    const uint64_t j = Mix64(HashCombine(HashCombine(HashCombine(seed_, kSaltFold), pixel), i)) % h;
-    const double u = (x + static_cast<double>(j)) / h;
-    return u < 1.0 ? u : std::nextafter(1.0, 0.0);
-  }
-  const uint64_t h = HashCombine(HashCombine(HashCombine(seed_, kSaltPad), pixel), d);
+uint64_t JointLattice::FoldKey(uint64_t pixel) const {
+  return HashCombine(HashCombine(seed_, kSaltFold), pixel);
+}
+
+uint64_t JointLattice::PaddingKey(uint64_t pixel, uint32_t d) const {
+  return HashCombine(HashCombine(HashCombine(seed_, kSaltPad), pixel), d);
+}
+
+double JointLattice::LatticeValue(uint32_t i, uint32_t d, double shift, uint64_t fold_key) const {
+  const uint64_t iz = static_cast<uint64_t>(i) * z_[d];
+  const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
+  double x = static_cast<double>(r) / n_ + shift;
+  if (x >= 1.0) x -= 1.0;
+  const uint32_t h = folds_[d];
+  if (h == 1) return tents_[d] ? std::min(1.0 - std::abs(2.0 * x - 1.0), std::nextafter(1.0, 0.0)) : x;
+  // Which of the h copies: uniform per (pixel, sample), independent of x.
+  const uint64_t j = Mix64(HashCombine(fold_key, i)) % h;
+  const double u = (x + static_cast<double>(j)) / h;
+  return u < 1.0 ? u : std::nextafter(1.0, 0.0);
+}
+
+double JointLattice::PaddingValue(uint32_t i, uint32_t d, uint64_t key) const {
   const size_t k = d - z_.size();
   if (k < kJointLatticeSobolDimensions) {
     // Padding: Sobol dimension k of point i, its own scramble.
-    const uint32_t v = NestedUniformScramble(SobolDigits(&padding_[k * kSobolDigits], i), static_cast<uint32_t>(h >> 32));
+    const uint32_t v = NestedUniformScramble(SobolDigits(&padding_[k * kSobolDigits], i), static_cast<uint32_t>(key >> 32));
     return static_cast<double>(v) * 0x1.0p-32;
   }
   // Past the sequence's dimensions: a 1-D Owen-scrambled Sobol point of its
   // own scramble, its index scrambled too (paired at random).
-  const uint32_t index = NestedUniformScramble(i, static_cast<uint32_t>(h));
-  const uint32_t v = NestedUniformScramble(SobolDim0(index), static_cast<uint32_t>(h >> 32));
+  const uint32_t index = NestedUniformScramble(i, static_cast<uint32_t>(key));
+  const uint32_t v = NestedUniformScramble(SobolDim0(index), static_cast<uint32_t>(key >> 32));
   return static_cast<double>(v) * 0x1.0p-32;
+}
+
+double JointLattice::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
+  if (d < z_.size()) return LatticeValue(i, d, Shift(pixel, d), folds_[d] == 1 ? 0 : FoldKey(pixel));
+  return PaddingValue(i, d, PaddingKey(pixel, d));
+}
+
+void JointLatticePixel::Reset(const JointLattice& lattice, uint64_t pixel) {
+  lattice_ = &lattice;
+  pixel_ = pixel;
+  fold_key_ = lattice.FoldKey(pixel);
+  kept_ = 0;
+  for (uint32_t d = 0; d < lattice.dimensions(); ++d) shifts_[d] = lattice.Shift(pixel, d);
+}
+
+double JointLatticePixel::Sample(uint32_t i, uint32_t d) {
+  const uint32_t lattice_dimensions = lattice_->dimensions();
+  if (d < lattice_dimensions) return lattice_->LatticeValue(i, d, shifts_[d], fold_key_);
+  const uint32_t k = d - lattice_dimensions;
+  if (k >= kKeptPaddingKeys) return lattice_->PaddingValue(i, d, lattice_->PaddingKey(pixel_, d));
+  const uint64_t bit = uint64_t{1} << k;
+  if (!(kept_ & bit)) {
+    padding_keys_[k] = lattice_->PaddingKey(pixel_, d);
+    kept_ |= bit;
+  }
+  return lattice_->PaddingValue(i, d, padding_keys_[k]);
 }
 
 }  // namespace alignset

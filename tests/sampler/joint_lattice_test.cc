@@ -212,6 +212,50 @@ TEST(JointLattice, DeterministicInSeedPixelSampleAndDimension) {
   }
 }
 
+TEST(JointLattice, APixelViewReturnsSamplesValuesBitForBit) {
+  // The fast path against the direct one: lattices that keep every asked
+  // dimension or stop early (N = 16), a power-of-two N (i z mod N a mask)
+  // and others, folded and tented dimensions; padded dimensions below and
+  // past the view's kept keys and past the Sobol sequence's dimensions. One
+  // view walks pixels in turn (its keys must not leak from one pixel to the
+  // next), each pixel's (sample, dimension) pairs in a shuffled order (a key
+  // made on first use must not depend on which use came first).
+  struct Case {
+    uint32_t n, dimensions;
+    std::vector<uint32_t> folds;
+    std::vector<bool> tents;
+  };
+  const std::vector<Case> cases = {{16, 9, {1, 1, 1, 1, 4}, {}},
+                                   {256, 9, {1, 1, 1, 1, 4}, {true, true, true, true, false, true}},
+                                   {100, 6, {1, 1, 4}, {false, true}},
+                                   {1024, 3, {}, {}},
+                                   {2, 1, {}, {}}};
+  std::mt19937 rng(7);
+  for (const Case& c : cases) {
+    auto l = JointLattice::Create(c.n, c.dimensions, 11, c.folds, c.tents);
+    ASSERT_TRUE(l.ok());
+    const uint32_t d0 = l->dimensions();
+    std::vector<uint32_t> dims;
+    for (uint32_t d = 0; d < d0 + JointLatticePixel::kKeptPaddingKeys + 6; ++d) dims.push_back(d);
+    dims.push_back(d0 + kJointLatticeSobolDimensions + 3);  // past the sequence
+    std::vector<std::pair<uint32_t, uint32_t>> order;
+    for (uint32_t i = 0; i < std::min(c.n, 40u); ++i) {
+      for (uint32_t d : dims) order.emplace_back(c.n - 1 - i, d);
+    }
+    JointLatticePixel view;
+    EXPECT_FALSE(view.valid());
+    for (uint64_t pixel : {0ull, 1ull, 12345ull, 0xffffffffffull}) {
+      std::shuffle(order.begin(), order.end(), rng);
+      view.Reset(*l, pixel);
+      ASSERT_TRUE(view.valid());
+      EXPECT_EQ(view.pixel(), pixel);
+      size_t differ = 0;
+      for (const auto& [i, d] : order) differ += view.Sample(i, d) != l->Sample(pixel, i, d);
+      EXPECT_EQ(differ, 0u) << "N=" << c.n << " pixel " << pixel;
+    }
+  }
+}
+
 // A smooth integrand that is not periodic on the unit cube, over five
 // dimensions (three on the lattice, two padded), and its exact integral.
 double F(const double* x) {

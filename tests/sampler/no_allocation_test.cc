@@ -174,9 +174,11 @@ TEST(SamplerHotPath, TheJointLatticeAllocatesNothingAfterCreate) {
       ASSERT_TRUE(l.ok());
       volatile double sink = 0.0;
       const uint64_t before = g_allocations.load();
+      JointLatticePixel view;  // and the per-pixel view a renderer keeps per thread
       for (uint64_t pixel = 0; pixel < 64 * 64; ++pixel) {
+        view.Reset(*l, pixel);
         for (uint32_t i = 0; i < n; ++i) {
-          for (uint32_t d = 0; d < 24; ++d) sink = sink + l->Sample(pixel, i, d);
+          for (uint32_t d = 0; d < 24; ++d) sink = sink + l->Sample(pixel, i, d) + view.Sample(i, d);
         }
       }
       EXPECT_EQ(g_allocations.load() - before, 0u) << "N=" << n;

@@ -101,13 +101,26 @@ class JointLattice {
   bool tented(uint32_t d) const { return d < tents_.size() && tents_[d]; }
 
   // Dimension d of sample i (< n) of pixel `pixel` (the renderer's pixel
-  // index, e.g. y * width + x). No checks here (an inner loop).
+  // index, e.g. y * width + x). No checks here (an inner loop). A renderer
+  // that asks for many values of one pixel in a row is faster with a
+  // JointLatticePixel (below), which returns the same values.
   double Sample(uint64_t pixel, uint32_t i, uint32_t d) const;
   // The pixel's shift in lattice dimension d (< dimensions()).
   double Shift(uint64_t pixel, uint32_t d) const;
 
  private:
+  friend class JointLatticePixel;
+  // The hashes a value is made from, per pixel (the shifts' and the fold's)
+  // and per (pixel, padded dimension): a JointLatticePixel keeps them.
+  uint64_t FoldKey(uint64_t pixel) const;
+  uint64_t PaddingKey(uint64_t pixel, uint32_t d) const;
+  // Lattice dimension d of sample i, the pixel's shift and fold key given.
+  double LatticeValue(uint32_t i, uint32_t d, double shift, uint64_t fold_key) const;
+  // Padded dimension d of sample i, its key given.
+  double PaddingValue(uint32_t i, uint32_t d, uint64_t key) const;
+
   uint32_t n_ = 0;
+  uint32_t mask_ = 0;  // N - 1 where N is a power of two (i z mod N a mask), else 0
   uint64_t seed_ = 0;
   std::vector<uint32_t> z_;
   std::vector<uint32_t> folds_;  // one per dimension asked for (1: not folded)
@@ -115,6 +128,39 @@ class JointLattice {
   // The padding's Sobol direction numbers, kSobolDigits a dimension: the
   // process's one table, made at the first Create.
   const uint32_t* padding_ = nullptr;
+};
+
+// One pixel's view of a JointLattice, for a renderer that asks for a pixel's
+// values in a row (pbrt: up to 64 samples of a pixel, dozens of dimensions
+// each). JointLattice::Sample hashes (seed, pixel, dimension) into the shift
+// or the scramble for every value; the view makes the pixel's shifts once at
+// Reset and each padded dimension's scramble key at its first use, so a
+// value is a multiply and a shift (lattice) or the Sobol digits and one
+// scramble (padding). Its values are JointLattice::Sample's bit for bit
+// (tests/sampler/joint_lattice_test.cc). Holds no allocation; one per
+// thread; the lattice must outlive it.
+class JointLatticePixel {
+ public:
+  // The padded dimensions whose scramble keys the view keeps; past them,
+  // each value is hashed as JointLattice::Sample does.
+  static constexpr uint32_t kKeptPaddingKeys = 64;
+
+  JointLatticePixel() = default;
+  // Points the view at pixel `pixel` of `lattice`.
+  void Reset(const JointLattice& lattice, uint64_t pixel);
+  bool valid() const { return lattice_ != nullptr; }
+  uint64_t pixel() const { return pixel_; }
+  // JointLattice::Sample(pixel(), i, d). Not const: it keeps a padded
+  // dimension's key on its first use.
+  double Sample(uint32_t i, uint32_t d);
+
+ private:
+  const JointLattice* lattice_ = nullptr;
+  uint64_t pixel_ = 0;
+  uint64_t fold_key_ = 0;
+  uint64_t kept_ = 0;  // bit k: padding_keys_[k] is made
+  double shifts_[kJointLatticeMaxDimensions] = {};
+  uint64_t padding_keys_[kKeptPaddingKeys] = {};
 };
 
 // The weighted P_2 criterion of the rank-1 lattice of generator z with N

@@ -225,4 +225,27 @@ double JointPoints::Sample(uint64_t pixel, uint32_t i, uint32_t d) const {
     return impl->lattice.Sample(pixel, i, d);
 }
 
+struct JointPoints::Pixel::Impl {
+    alignset::JointLatticePixel view;
+};
+
+JointPoints::Pixel::Pixel() : impl(std::make_unique<Impl>()) {}
+JointPoints::Pixel::~Pixel() = default;
+
+void JointPoints::Pixel::Reset(const JointPoints &points, uint64_t pixel) {
+    impl->view.Reset(points.impl->lattice, pixel);
+}
+
+bool JointPoints::Pixel::Valid() const {
+    return impl->view.valid();
+}
+
+uint64_t JointPoints::Pixel::Index() const {
+    return impl->view.pixel();
+}
+
+double JointPoints::Pixel::Sample(uint32_t i, uint32_t d) {
+    return impl->view.Sample(i, d);
+}
+
 }  // namespace pbrt_alignset

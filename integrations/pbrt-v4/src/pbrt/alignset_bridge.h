@@ -98,6 +98,24 @@ class JointPoints {
     // coordinate for d < Dimensions(), the library's padding beyond.
     double Sample(uint64_t pixel, uint32_t i, uint32_t d) const;
 
+    // One pixel's view (the library's JointLatticePixel: the pixel's shifts
+    // and scramble keys hashed once, not per value), one per thread. Its
+    // values are Sample's.
+    class Pixel {
+      public:
+        Pixel();
+        ~Pixel();
+        // Points the view at pixel `pixel` of `points` (which outlives it).
+        void Reset(const JointPoints &points, uint64_t pixel);
+        bool Valid() const;
+        uint64_t Index() const;
+        double Sample(uint32_t i, uint32_t d);
+
+      private:
+        struct Impl;
+        std::unique_ptr<Impl> impl;
+    };
+
   private:
     struct Impl;
     explicit JointPoints(std::unique_ptr<Impl> impl);

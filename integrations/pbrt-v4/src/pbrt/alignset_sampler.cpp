@@ -81,18 +81,18 @@ struct AlignedSampler::Shared {
     std::vector<uint8_t> planned;  // written by the pixel's own thread only
 
     bool Joint() const { return aligned == Aligned::kJoint; }
-    // Lattice dimension d of sample i of the pixel of index `pixel`, below 1.
-    Float JointPoint(uint64_t pixel, int i, uint32_t d) const {
-        return std::min(Float(joint->Sample(pixel, uint32_t(i), d)), OneMinusEpsilon);
+    // Library dimension d of sample i of the pixel `view` is at, below 1.
+    static Float JointPoint(pbrt_alignset::JointPoints::Pixel &view, int i, uint32_t d) {
+        return std::min(Float(view.Sample(uint32_t(i), d)), OneMinusEpsilon);
     }
     // Sampler dimension `dim` of sample i under kJoint: its lattice dimension,
     // or the library's padding past any lattice dimension.
-    Float JointSample(uint64_t pixel, int i, int dim) const {
+    Float JointSample(pbrt_alignset::JointPoints::Pixel &view, int i, int dim) const {
         if (dim < kJointMaxDimension)
-            return JointPoint(pixel, i, uint32_t(jointOf[dim] >= 0 ? jointOf[dim] : jointPadOf[dim]));
+            return JointPoint(view, i, uint32_t(jointOf[dim] >= 0 ? jointOf[dim] : jointPadOf[dim]));
         // Past kJointMaxDimension every sampler dimension is padded, after
         // the A - 2 of "jointdimensions": A + dim - (A - 2).
-        return JointPoint(pixel, i, uint32_t(dim + 2));
+        return JointPoint(view, i, uint32_t(dim + 2));
     }
     bool AlignsFilm() const {
         return aligned == Aligned::kFilmAndLight || aligned == Aligned::kFilm;
@@ -122,7 +122,9 @@ struct AlignedSampler::Local {
         return pass == kPassPrepass ? sampleIndex : sampleIndex - s.prepass;
     }
     int PassCount(const Shared &s) const { return pass == kPassPrepass ? s.prepass : s.main; }
-    uint64_t jointPixel = 0;  // kJoint: the library's pixel index
+    // kJoint: the library's view of the current pixel (its hashes made once
+    // a pixel, not once a value).
+    pbrt_alignset::JointPoints::Pixel jointView;
     std::vector<Point> filmPoints, lightPoints;
     // The main pass's wavelength sample as a third lattice coordinate
     // (Planner::ThirdMultiplier) of the film set or, without one, the light
@@ -197,7 +199,9 @@ void AlignedSampler::StartPixelSample(Point2i p, int sampleIndex, int dimension)
     if (s.Joint()) {
         l.pixel = p;
         l.pass = kPassMain;
-        l.jointPixel = uint64_t(p.y) * uint64_t(s.imageWidth) + uint64_t(p.x);
+        const uint64_t index = uint64_t(p.y) * uint64_t(s.imageWidth) + uint64_t(p.x);
+        if (!l.jointView.Valid() || l.jointView.Index() != index)
+            l.jointView.Reset(*s.joint, index);
         return;
     }
     if (p == l.pixel && pass == l.pass)
@@ -265,7 +269,7 @@ Float AlignedSampler::Get1D() {
     const int i = l.IndexInPass(s);
     const int dim = l.dimension++;
     if (s.Joint())
-        return s.JointSample(l.jointPixel, i, dim);
+        return s.JointSample(l.jointView, i, dim);
     if (l.pass == kPassMain && dim == kWavelengthDimension && l.third != 0) {
         // The lattice index of this sample's point in the set it pairs with.
         const uint64_t k = l.thirdDomain == kFilm
@@ -285,7 +289,7 @@ Point2f AlignedSampler::Get2D() {
     const int dim = l.dimension;
     l.dimension += 2;
     if (s.Joint())
-        return Point2f(s.JointSample(l.jointPixel, i, dim), s.JointSample(l.jointPixel, i, dim + 1));
+        return Point2f(s.JointSample(l.jointView, i, dim), s.JointSample(l.jointView, i, dim + 1));
     if (dim == s.lightDimension && s.AlignsLight()) {
         const Point &q = l.lightPoints[s.LightIndex(l.pixel, l.pass, i, count)];
         return Point2f(Float(q.x), Float(q.y));
@@ -299,7 +303,7 @@ Point2f AlignedSampler::GetPixel2D() {
     Local &l = *local;
     const int i = l.IndexInPass(s), count = l.PassCount(s);
     if (s.Joint())  // the lattice's first two dimensions
-        return Point2f(s.JointPoint(l.jointPixel, i, 0), s.JointPoint(l.jointPixel, i, 1));
+        return Point2f(Shared::JointPoint(l.jointView, i, 0), Shared::JointPoint(l.jointView, i, 1));
     if (s.AlignsFilm()) {
         const Point &q = l.filmPoints[i];
         return Point2f(Float(q.x), Float(q.y));
