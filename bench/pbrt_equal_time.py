@@ -202,7 +202,9 @@ def retime(r, old, scene_dir, scene, mode, args, log):
                 raise RuntimeError(f"{path}: no run of {sampler} at {spp} spp to retime")
             was = runs[0]["seconds"]
             runs[0]["seconds"] = float(np.median(secs[sampler]))
-            log(f"  {name} {sampler:>8} {spp:>5} spp: {was:.2f} s -> {runs[0]['seconds']:.2f} s (same image)")
+            runs[0]["timed_seeds"] = len(secs[sampler])  # the errors keep their own "seeds"
+            checked = " (the same image)" if SAMPLERS[sampler][0] == "aligned" else ""
+            log(f"  {name} {sampler:>8} {spp:>5} spp: {was:.2f} s -> {runs[0]['seconds']:.2f} s{checked}")
     with open(path, "w") as f:
         json.dump(result, f, indent=1)
     with open(os.path.join(args.out, name + ".md"), "w") as f:
