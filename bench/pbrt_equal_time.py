@@ -185,13 +185,14 @@ def retime(r, old, scene_dir, scene, mode, args, log):
     with open(path) as f:
         result = json.load(f)
     text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
+    checked = {x for x in args.samplers if SAMPLERS[x][0] == "aligned"}  # pbrt's own samplers did not change
     for spp in args.spp:
         secs = {sampler: [] for sampler in args.samplers}
         for k in range(args.seeds):
             for sampler in args.samplers:
                 img, s = r.render(text, sampler, spp, 1 + k)
                 secs[sampler].append(s)
-                if k == 0 and SAMPLERS[sampler][0] == "aligned":  # pbrt's own samplers did not change
+                if k == 0 and sampler in checked:
                     before, _ = old.render(text, sampler, spp, 1)
                     if not np.array_equal(img, before):
                         raise RuntimeError(f"{name} {sampler} {spp} spp: the image differs from {args.retime}'s; "
@@ -203,9 +204,14 @@ def retime(r, old, scene_dir, scene, mode, args, log):
             was = runs[0]["seconds"]
             runs[0]["seconds"] = float(np.median(secs[sampler]))
             runs[0]["timed_seeds"] = len(secs[sampler])  # the errors keep their own "seeds"
-            checked = " (the same image)" if SAMPLERS[sampler][0] == "aligned" else ""
-            log(f"  {name} {sampler:>8} {spp:>5} spp: {was:.2f} s -> {runs[0]['seconds']:.2f} s{checked}")
-    with open(path, "w") as f:
+            same = " (the same image)" if sampler in checked else ""
+            log(f"  {name} {sampler:>8} {spp:>5} spp: {was:.2f} s -> {runs[0]['seconds']:.2f} s{same}")
+    write_table(args, name, result)
+
+
+def write_table(args, name, result):
+    """A variant's result as --out/name.json and its tables as name.md."""
+    with open(os.path.join(args.out, name + ".json"), "w") as f:
         json.dump(result, f, indent=1)
     with open(os.path.join(args.out, name + ".md"), "w") as f:
         f.write(table(result, args.subject) + "\n")
@@ -420,10 +426,7 @@ def main():
                 result["runs"] = sorted(kept + result["runs"],
                                         key=lambda x: (x["spp"], order.index(x["sampler"])
                                                        if x["sampler"] in order else 99))
-            with open(os.path.join(args.out, name + ".json"), "w") as f:
-                json.dump(result, f, indent=1)
-            with open(os.path.join(args.out, name + ".md"), "w") as f:
-                f.write(table(result, args.subject) + "\n")
+            write_table(args, name, result)
             wrote = "json,md"
             if not (args.merge and args.image_spp not in args.spp):  # a merge at other spp keeps the figure
                 figure(result, images, os.path.join(args.out, name + ".png"), args.image_spp, args.samplers)
