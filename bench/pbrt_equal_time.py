@@ -63,10 +63,15 @@ SAMPLERS = {
     # shifted alone; tenting the lobe and light choice too gave the same
     # images on the six path variants).
     "joint-tent-bsdf": ("aligned", {"align": "joint", "tentdimensions": [8, 9]}),
+    # The lattice the default is with a pinhole camera, named, whatever the
+    # camera: what joint's lens and time dimensions are worth where the
+    # camera has a lens (there the default puts them after the film).
+    "joint-pinhole": ("aligned", {"align": "joint", "jointdimensions": [5, 6, 0, 8, 9, 7, 4]}),
 }
 # Pixels from a pixel's centre that pbrt's gaussian filter (radius 1.5) reaches.
 FILTER_REACH = 2
-SCENES = ["soft_shadows", "silhouettes", "thin_texture", "cornell_box", "room_sphere_light", "room_rect_light"]
+SCENES = ["soft_shadows", "silhouettes", "thin_texture", "cornell_box", "room_sphere_light", "room_rect_light",
+          "room_lens_motion"]
 MODES = ["direct", "path5"]
 
 

@@ -19,7 +19,10 @@ and its joint lattice (align "joint") on a tiny soft-shadow scene
  5. better: its edge-pixel MSE at 256 spp below both zsobol's and sobol's
     (pbrt's best on edge pixels), 12 seeds each;
  6. bad input gets pbrt's error: dimensions it cannot serve, a repeated
-    dimension, one sample a pixel, a pre-pass asked of a mode without one.
+    dimension, one sample a pixel, a pre-pass asked of a mode without one;
+ 7. the camera decides the default's dimensions: with a pinhole the lattice
+    is the default's, with a thin lens the lens and time join it (byte for
+    byte the lattices "jointdimensions" names).
 
   test_pbrt_sampler.py PBRT MAKE_TABLE_SH BUILD_DIR
 
@@ -211,6 +214,28 @@ def main():
                 (' "string randomize" [ "tent" ] "integer tentdimensions" [ 8 ]', 64, "tents them all",
                  "a tent both everywhere and on some dimensions")):
             refused(joint + params, spp, needle, what, renderer=pen)
+
+        # 7. The camera decides the default's dimensions: with a pinhole the
+        # lattice is the one "jointdimensions" [ 5 6 0 8 9 7 4 ] names; with a
+        # thin lens, the lens (2, 3) and time (1) right after the film. Byte
+        # for byte, so each is the named lattice and not merely close to it.
+        def same_image(scene_renderer, a, b):
+            return np.array_equal(scene_renderer.image(a, 64, 3), scene_renderer.image(b, 64, 3))
+
+        named_default = joint + ' "integer jointdimensions" [ 5 6 0 8 9 7 4 ]'
+        named_lens = joint + ' "integer jointdimensions" [ 2 3 1 5 6 0 8 9 7 4 ]'
+        check(same_image(pen, joint, named_default), "a pinhole camera: joint's lattice is the default's")
+        lens_scene = os.path.join(work, "tiny_penumbra_lens.pbrt")
+        with open(PENUMBRA) as f:
+            text = f.read().replace('Camera "perspective" "float fov" [ 32 ]',
+                                    'Camera "perspective" "float fov" [ 32 ] "float lensradius" [ 0.05 ] '
+                                    '"float focaldistance" [ 1.2 ]')
+        assert "lensradius" in text, "tiny_penumbra.pbrt's camera line changed: update this test"
+        with open(lens_scene, "w") as g:
+            g.write(text)
+        lens = Pbrt(pbrt_bin, work, lens_scene)
+        check(same_image(lens, joint, named_lens), "a thin lens: the lens and time join joint's lattice after the film")
+        check(not same_image(lens, joint, named_default), "a thin lens: joint's lattice is not the pinhole's")
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0

@@ -1,13 +1,14 @@
 #!/usr/bin/python3
-"""Writes the two room scenes of integrations/pbrt-v4/scenes (room_sphere_light
-and room_rect_light): curved and subdivided meshes on a floor with walls, lit
-by a small spherical area light or a small rectangular one, diffuse and glossy
-materials; scenes a renderer's user would set up, written by this project
-(every mesh is computed here, no scene file is copied).
+"""Writes the three room scenes of integrations/pbrt-v4/scenes (room_sphere_light,
+room_rect_light and room_lens_motion): curved and subdivided meshes on a floor
+with walls, lit by a small spherical area light or a small rectangular one,
+diffuse and glossy materials, and in the third a thin lens and an object moving
+while the shutter is open; scenes a renderer's user would set up, written by
+this project (every mesh is computed here, no scene file is copied).
 
   /usr/bin/python3 integrations/pbrt-v4/scenes/make_room_scenes.py
 
-rewrites both files beside this script (deterministic: the same text each
+rewrites the three files beside this script (deterministic: the same text each
 run); --check only says whether they are its output. Each renders direct lighting as written ("path", depth 1); the
 benchmark's "path5" mode renders it with "path" at depth 5.
 """
@@ -71,9 +72,9 @@ AttributeEnd
 """
 
 
-def header(name, comment, lookat):
+def header(name, comment, lookat, lens=""):
     return (comment + f"""LookAt {lookat}
-Camera "perspective" "float fov" [ 42 ]
+Camera "perspective" "float fov" [ 42 ]{" " + lens if lens else ""}
 Film "rgb" "integer xresolution" [ 192 ] "integer yresolution" [ 192 ] "string filename" [ "{name}.exr" ]
 Integrator "path" "integer maxdepth" [ 1 ]
 WorldBegin
@@ -191,8 +192,67 @@ AttributeEnd
     return s
 
 
+def lens_motion_scene():
+    P, N, idx = torus(0.34, 0.11, 36, 18)
+    comment = """# A room seen through a thin lens, with an object moving while the shutter is
+# open (alignset integrations/pbrt-v4; written by make_room_scenes.py): a glossy
+# sphere in the foreground out of focus, a torus in focus, a rounded cube
+# sliding sideways and a diffuse post, lit by a small spherical light. The
+# defocused silhouettes are edges in the film and lens samples together, the
+# moving cube's edges and its shadow's in the film, time and light samples:
+# the camera's time and lens dimensions are live. Direct lighting as written.
+#   pbrt room_lens_motion.pbrt        (pbrt's defaults: zsobol, Gaussian filter)
+"""
+    s = header("room_lens_motion", comment, "1.2 -3.9 1.6   0 0.3 0.5   0 0 1",
+               '"float lensradius" [ 0.06 ] "float focaldistance" [ 4.55 ]')
+    s += """# The light: a sphere of radius 0.1 above and in front of the objects.
+AttributeBegin
+  Translate -0.3 -0.6 2.2
+  AreaLightSource "diffuse" "rgb L" [ 320 320 340 ]
+  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+  Shape "sphere" "float radius" [ 0.1 ]
+AttributeEnd
+
+"""
+    s += room([0.52, 0.5, 0.48], [0.58, 0.6, 0.62])
+    s += f"""
+# A glossy sphere close to the lens, out of focus.
+AttributeBegin
+  Translate 0.75 -2.0 0.28
+  Material "coateddiffuse" "rgb reflectance" [ 0.55 0.5 0.15 ] "float roughness" [ 0.06 ]
+  Shape "sphere" "float radius" [ 0.28 ]
+AttributeEnd
+
+# A torus lying on the floor, in focus.
+AttributeBegin
+  Translate 0.1 0.3 0.11
+  Material "coateddiffuse" "rgb reflectance" [ 0.5 0.12 0.15 ] "float roughness" [ 0.1 ]
+{mesh(P, N, idx)}AttributeEnd
+
+# A rounded cube sliding 0.4 along x while the shutter is open.
+AttributeBegin
+  ActiveTransform EndTime
+  Translate 0.4 0 0
+  ActiveTransform All
+  Translate -1.1 0.9 0.36  Rotate 25 0 0 1  Scale 0.36 0.36 0.36
+  Material "diffuse" "rgb reflectance" [ 0.2 0.35 0.65 ]
+  Shape "loopsubdiv" "integer levels" [ 3 ] "point3 P" [ {fmt(CUBE_P)} ]
+    "integer indices" [ {" ".join(map(str, CUBE_I))} ]
+AttributeEnd
+
+# A diffuse post behind the torus.
+AttributeBegin
+  Translate 1.2 1.2 0
+  Material "diffuse" "rgb reflectance" [ 0.6 0.6 0.55 ]
+  Shape "cylinder" "float radius" [ 0.06 ] "float zmin" [ 0 ] "float zmax" [ 1.5 ]
+AttributeEnd
+"""
+    return s
+
+
 def main():
-    scenes = (("room_sphere_light", sphere_light_scene()), ("room_rect_light", rect_light_scene()))
+    scenes = (("room_sphere_light", sphere_light_scene()), ("room_rect_light", rect_light_scene()),
+              ("room_lens_motion", lens_motion_scene()))
     if sys.argv[1:] == ["--check"]:
         # The committed files are this script's output (a CTest).
         stale = [name for name, text in scenes if open(os.path.join(HERE, name + ".pbrt")).read() != text]

@@ -2,6 +2,7 @@
 
 #include <pbrt/alignset_sampler.h>
 
+#include <pbrt/cameras.h>
 #include <pbrt/options.h>
 #include <pbrt/paramdict.h>
 #include <pbrt/util/check.h>
@@ -39,6 +40,11 @@ enum class Aligned { kFilmAndLight, kFilm, kLight, kNone, kJoint };
 // (7), the light choice (4). The film takes the lattice's first two.
 constexpr int kJointMaxDimension = 64;
 constexpr int kJointDefault[] = {5, 6, 0, 8, 9, 7, 4};
+// The default where the camera has a lens (depth of field): its lens sample
+// (2, 3) and time (1) right after the film, so that the film and lens squares
+// are searched together; the rest as kJointDefault. A pinhole camera reads
+// the lens sample and ignores it, so there the lattice keeps kJointDefault.
+constexpr int kJointLensDefault[] = {2, 3, 1, 5, 6, 0, 8, 9, 7, 4};
 
 constexpr int kPassPrepass = 0, kPassMain = 1;
 // The dimension of pbrt's wavelength sample: RayIntegrator::EvaluatePixelSample's
@@ -73,6 +79,11 @@ struct AlignedSampler::Shared {
     // padding's best).
     int jointPadOf[kJointMaxDimension];
     int jointTents = 0;  // lattice dimensions tented
+    // kJoint: no "jointdimensions" given (StartRender may choose the lens's
+    // default); "randomize" "tent", or the sampler dimensions of "tentdimensions".
+    bool jointDefaultDimensions = false;
+    bool jointTentAll = false;
+    std::vector<int> jointTented;
     int imageWidth = 0;  // the pixel index is y * imageWidth + x
 
     // Set by StartRender.
@@ -153,11 +164,46 @@ int AlignedSampler::PrepassSamples() const {
     return shared->prepass;
 }
 
-void AlignedSampler::StartRender(Bounds2i pixelBounds) {
+namespace {
+
+void BuildJoint(AlignedSampler::Shared &s, const std::vector<int> &dims, const FileLoc *loc);
+
+// Whether the camera's rays depend on the lens sample: a thin lens with a
+// radius (depth of field), or a realistic camera's lens system. Two lens
+// samples at a few film points, the same time and wavelengths.
+bool LensIsLive(const Camera &camera) {
+    const Point2i res = camera.GetFilm().FullResolution();
+    SampledWavelengths lambda = SampledWavelengths::SampleVisible(0.5f);
+    for (Point2f f : {Point2f(0.5f, 0.5f), Point2f(0.3f, 0.7f), Point2f(0.8f, 0.2f)}) {
+        CameraSample a, b;
+        a.pFilm = b.pFilm = Point2f(f.x * res.x, f.y * res.y);
+        a.pLens = Point2f(0.2f, 0.3f);
+        b.pLens = Point2f(0.7f, 0.9f);
+        a.time = b.time = 0.5f;
+        pstd::optional<CameraRay> ra = camera.GenerateRay(a, lambda);
+        pstd::optional<CameraRay> rb = camera.GenerateRay(b, lambda);
+        if (ra.has_value() != rb.has_value())
+            return true;
+        if (ra && (ra->ray.o != rb->ray.o || ra->ray.d != rb->ray.d))
+            return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+void AlignedSampler::StartRender(Bounds2i pixelBounds, const Camera &camera) {
     Shared &s = *shared;
     s.bounds = pixelBounds;
-    if (s.Joint())
-        return;  // no pre-pass values and no plans
+    if (s.Joint()) {
+        // No pre-pass values and no plans; with a lens, the lens and time
+        // join the lattice (a defocused edge is an edge in the film and lens
+        // samples together).
+        if (s.jointDefaultDimensions && LensIsLive(camera))
+            BuildJoint(s, std::vector<int>(std::begin(kJointLensDefault), std::end(kJointLensDefault)),
+                       nullptr);
+        return;
+    }
     size_t pixels = size_t(pixelBounds.Area());
     s.values.assign(pixels * size_t(s.prepass), 0.0);
     s.planned.assign(pixels, 0);
@@ -358,6 +404,54 @@ std::string AlignedSampler::ToString() const {
 
 namespace {
 
+// Builds the lattice over the film and `dims` (sampler dimensions, in
+// order): which sampler dimension is which lattice dimension, the folded
+// wavelength, the tents ("randomize" "tent": every unfolded one; else those
+// of `tented`), the padding's numbering. Called by CreateJoint, and again by
+// StartRender where the camera's lens decides the default's dimensions.
+void BuildJoint(AlignedSampler::Shared &s, const std::vector<int> &dims, const FileLoc *loc) {
+    const int t = s.samplesPerPixel;
+    std::fill(std::begin(s.jointOf), std::end(s.jointOf), -1);
+    for (size_t k = 0; k < dims.size(); ++k) {
+        const int d = dims[k];
+        if (d < 0 || d >= kJointMaxDimension)
+            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d; each must be in "
+                           "[0, %d).", d, kJointMaxDimension);
+        if (s.jointOf[d] >= 0)
+            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d twice.", d);
+        s.jointOf[d] = int(k) + 2;  // after the film's two
+    }
+    // The wavelength sample's integrand has period 1 / NSpectrumSamples
+    // (SampleVisibleWavelengths draws at u + j / NSpectrumSamples): folded
+    // by the library.
+    std::vector<uint32_t> folds(dims.size() + 2, 1);
+    if (s.jointOf[kWavelengthDimension] >= 0)
+        folds[s.jointOf[kWavelengthDimension]] = uint32_t(NSpectrumSamples);
+    std::vector<bool> tents(dims.size() + 2, false);
+    if (s.jointTentAll)
+        for (size_t k = 0; k < tents.size(); ++k)
+            tents[k] = folds[k] == 1;
+    for (int d : s.jointTented) {
+        if (d < 0 || d >= kJointMaxDimension || s.jointOf[d] < 0)
+            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, which "
+                           "\"jointdimensions\" does not.", d);
+        if (folds[s.jointOf[d]] != 1)
+            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, the folded "
+                           "wavelength (periodic already).", d);
+        tents[s.jointOf[d]] = true;
+    }
+    s.jointTents = int(std::count(tents.begin(), tents.end(), true));
+    const int asked = int(dims.size()) + 2;  // the film's two and "jointdimensions"
+    for (int d = 0, k = 0; d < kJointMaxDimension; ++d)
+        s.jointPadOf[d] = s.jointOf[d] >= 0 ? -1 : asked + k++;
+    std::string error;
+    s.joint = pbrt_alignset::JointPoints::Create(t, asked, Hash(s.seed, 0x6a6f696e74), folds,
+                                                 tents, &error);
+    if (!s.joint)
+        ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
+                  t, asked, error);
+}
+
 // align "joint": the lattice over the film and "jointdimensions".
 AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
                             const ParameterDictionary &parameters, Point2i fullResolution,
@@ -373,24 +467,11 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
     s->prepassWeight = 0;
     s->imageWidth = std::max(fullResolution.x, 1);
     std::vector<int> dims = parameters.GetIntArray("jointdimensions");
+    // Without "jointdimensions" the default's; StartRender puts the lens and
+    // time in too where the camera has a lens.
+    s->jointDefaultDimensions = dims.empty();
     if (dims.empty())
         dims.assign(std::begin(kJointDefault), std::end(kJointDefault));
-    std::fill(std::begin(s->jointOf), std::end(s->jointOf), -1);
-    for (size_t k = 0; k < dims.size(); ++k) {
-        const int d = dims[k];
-        if (d < 0 || d >= kJointMaxDimension)
-            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d; each must be in "
-                           "[0, %d).", d, kJointMaxDimension);
-        if (s->jointOf[d] >= 0)
-            ErrorExit(loc, "aligned: \"jointdimensions\" names dimension %d twice.", d);
-        s->jointOf[d] = int(k) + 2;  // after the film's two
-    }
-    // The wavelength sample's integrand has period 1 / NSpectrumSamples
-    // (SampleVisibleWavelengths draws at u + j / NSpectrumSamples): folded
-    // by the library.
-    std::vector<uint32_t> folds(dims.size() + 2, 1);
-    if (s->jointOf[kWavelengthDimension] >= 0)
-        folds[s->jointOf[kWavelengthDimension]] = uint32_t(NSpectrumSamples);
     // "randomize": "shift" (a Cranley-Patterson shift a pixel) or "tent"
     // (the shift, then the tent in every lattice dimension but the folded
     // wavelength); "tentdimensions": the shift, then the tent in those
@@ -399,34 +480,12 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
     if (randomize != "shift" && randomize != "tent")
         ErrorExit(loc, "aligned: \"randomize\" \"%s\" is not \"shift\" or \"tent\".",
                   randomize);
-    std::vector<bool> tents(dims.size() + 2, false);
-    if (randomize == "tent")
-        for (size_t k = 0; k < tents.size(); ++k)
-            tents[k] = folds[k] == 1;
-    const std::vector<int> tented = parameters.GetIntArray("tentdimensions");
-    if (!tented.empty() && randomize == "tent")
+    s->jointTentAll = randomize == "tent";
+    s->jointTented = parameters.GetIntArray("tentdimensions");
+    if (!s->jointTented.empty() && randomize == "tent")
         ErrorExit(loc, "aligned: \"tentdimensions\" names the tented dimensions of "
                        "\"randomize\" \"shift\"; \"randomize\" \"tent\" tents them all.");
-    for (int d : tented) {
-        if (d < 0 || d >= kJointMaxDimension || s->jointOf[d] < 0)
-            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, which "
-                           "\"jointdimensions\" does not.", d);
-        if (folds[s->jointOf[d]] != 1)
-            ErrorExit(loc, "aligned: \"tentdimensions\" names dimension %d, the folded "
-                           "wavelength (periodic already).", d);
-        tents[s->jointOf[d]] = true;
-    }
-    s->jointTents = int(std::count(tents.begin(), tents.end(), true));
-    const int asked = int(dims.size()) + 2;  // the film's two and "jointdimensions"
-    for (int d = 0, k = 0; d < kJointMaxDimension; ++d)
-        s->jointPadOf[d] = s->jointOf[d] >= 0 ? -1 : asked + k++;
-    std::string error;
-    s->joint = pbrt_alignset::JointPoints::Create(t, asked,
-                                                  Hash(s->seed, 0x6a6f696e74), folds, tents,
-                                                  &error);
-    if (!s->joint)
-        ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
-                  t, asked, error);
+    BuildJoint(*s, dims, loc);
     return alloc.new_object<AlignedSampler>(std::move(s));
 }
 

@@ -36,6 +36,8 @@
 
 namespace pbrt {
 
+class Camera;
+
 class AlignedSampler {
   public:
     static constexpr const char *Name() { return "AlignedSampler"; }
@@ -58,9 +60,10 @@ class AlignedSampler {
     int SamplesPerPixel() const;
     // M: the pre-pass samples of every pixel (sample indices [0, M)).
     int PrepassSamples() const;
-    // The integrator's calls: the pixels rendered (before the first sample),
-    // and each sample's luminance once traced; returns the sample's weight.
-    void StartRender(Bounds2i pixelBounds);
+    // The integrator's calls: the pixels rendered and the camera (before the
+    // first sample), and each sample's luminance once traced; returns the
+    // sample's weight.
+    void StartRender(Bounds2i pixelBounds, const Camera &camera);
     Float RecordSample(Point2i pPixel, int sampleIndex, Float luminance);
 
     void StartPixelSample(Point2i p, int sampleIndex, int dimension = 0);
