@@ -72,6 +72,19 @@ AttributeEnd
 """
 
 
+def sphere_light(what, position, rgb, radius):
+    """A small spherical area light (black, so only its emission is seen)."""
+    return f"""# The light: {what}.
+AttributeBegin
+  Translate {position}
+  AreaLightSource "diffuse" "rgb L" [ {rgb} ]
+  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
+  Shape "sphere" "float radius" [ {radius:g} ]
+AttributeEnd
+
+"""
+
+
 def header(name, comment, lookat, lens=""):
     return (comment + f"""LookAt {lookat}
 Camera "perspective" "float fov" [ 42 ]{" " + lens if lens else ""}
@@ -92,15 +105,7 @@ def sphere_light_scene():
 #   pbrt room_sphere_light.pbrt       (pbrt's defaults: zsobol, Gaussian filter)
 """
     s = header("room_sphere_light", comment, "1.6 -3.6 2.2   0.2 0.4 0.45   0 0 1")
-    s += """# The light: a sphere of radius 0.09 above the objects.
-AttributeBegin
-  Translate 0.6 -0.2 2.1
-  AreaLightSource "diffuse" "rgb L" [ 160 150 130 ]
-  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-  Shape "sphere" "float radius" [ 0.09 ]
-AttributeEnd
-
-"""
+    s += sphere_light("a sphere of radius 0.09 above the objects", "0.6 -0.2 2.1", "160 150 130", 0.09)
     s += room([0.55, 0.55, 0.52], [0.6, 0.58, 0.55])
     s += f"""
 # A glossy torus, tilted.
@@ -205,15 +210,8 @@ def lens_motion_scene():
 """
     s = header("room_lens_motion", comment, "1.2 -3.9 1.6   0 0.3 0.5   0 0 1",
                '"float lensradius" [ 0.06 ] "float focaldistance" [ 4.55 ]')
-    s += """# The light: a sphere of radius 0.1 above and in front of the objects.
-AttributeBegin
-  Translate -0.3 -0.6 2.2
-  AreaLightSource "diffuse" "rgb L" [ 320 320 340 ]
-  Material "diffuse" "rgb reflectance" [ 0 0 0 ]
-  Shape "sphere" "float radius" [ 0.1 ]
-AttributeEnd
-
-"""
+    s += sphere_light("a sphere of radius 0.1 above and in front of the objects", "-0.3 -0.6 2.2",
+                      "320 320 340", 0.1)
     s += room([0.52, 0.5, 0.48], [0.58, 0.6, 0.62])
     s += f"""
 # A glossy sphere close to the lens, out of focus.
