@@ -52,6 +52,9 @@ def mesh(P, N, idx, indent="  "):
 CUBE_P = [-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1, 1]
 CUBE_I = [0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
           1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7]
+# The cube as a pbrt shape, three levels of Loop subdivision.
+LOOP_CUBE = (f'  Shape "loopsubdiv" "integer levels" [ 3 ] "point3 P" [ {fmt(CUBE_P)} ]\n'
+             f'    "integer indices" [ {" ".join(map(str, CUBE_I))} ]\n')
 # An octahedron, subdivided: a smooth blob.
 OCTA_P = [1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1]
 OCTA_I = [0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5]
@@ -118,9 +121,7 @@ AttributeBegin
 AttributeBegin
   Translate 0.95 0.75 0.38  Rotate 35 0 0 1  Scale 0.42 0.42 0.42
   Material "coateddiffuse" "rgb reflectance" [ 0.15 0.3 0.6 ] "float roughness" [ 0.15 ]
-  Shape "loopsubdiv" "integer levels" [ 3 ] "point3 P" [ {fmt(CUBE_P)} ]
-    "integer indices" [ {" ".join(map(str, CUBE_I))} ]
-AttributeEnd
+{LOOP_CUBE}AttributeEnd
 
 # A subdivided blob, squashed.
 AttributeBegin
@@ -166,9 +167,7 @@ AttributeEnd
 AttributeBegin
   Translate -0.7 0.5 0.35  Rotate -20 0 0 1  Scale 0.38 0.38 0.38
   Material "diffuse" "rgb reflectance" [ 0.7 0.35 0.2 ]
-  Shape "loopsubdiv" "integer levels" [ 3 ] "point3 P" [ {fmt(CUBE_P)} ]
-    "integer indices" [ {" ".join(map(str, CUBE_I))} ]
-AttributeEnd
+{LOOP_CUBE}AttributeEnd
 
 # A glossy sphere.
 AttributeBegin
@@ -234,9 +233,7 @@ AttributeBegin
   ActiveTransform All
   Translate -1.1 0.9 0.36  Rotate 25 0 0 1  Scale 0.36 0.36 0.36
   Material "diffuse" "rgb reflectance" [ 0.2 0.35 0.65 ]
-  Shape "loopsubdiv" "integer levels" [ 3 ] "point3 P" [ {fmt(CUBE_P)} ]
-    "integer indices" [ {" ".join(map(str, CUBE_I))} ]
-AttributeEnd
+{LOOP_CUBE}AttributeEnd
 
 # A diffuse post behind the torus.
 AttributeBegin
