@@ -40,11 +40,12 @@ enum class Aligned { kFilmAndLight, kFilm, kLight, kNone, kJoint };
 // (7), the light choice (4). The film takes the lattice's first two.
 constexpr int kJointMaxDimension = 64;
 constexpr int kJointDefault[] = {5, 6, 0, 8, 9, 7, 4};
-// The default where the camera has a lens (depth of field): its lens sample
-// (2, 3) and time (1) right after the film, so that the film and lens squares
-// are searched together; the rest as kJointDefault. A pinhole camera reads
-// the lens sample and ignores it, so there the lattice keeps kJointDefault.
-constexpr int kJointLensDefault[] = {2, 3, 1, 5, 6, 0, 8, 9, 7, 4};
+// Where the camera has a lens (depth of field), the default puts its lens
+// sample (2, 3) and time (1) right after the film, before kJointDefault, so
+// that the film and lens squares are searched together. A pinhole camera
+// reads the lens sample and ignores it, so there the lattice keeps
+// kJointDefault.
+constexpr int kJointLensFirst[] = {2, 3, 1};
 
 constexpr int kPassPrepass = 0, kPassMain = 1;
 // The dimension of pbrt's wavelength sample: RayIntegrator::EvaluatePixelSample's
@@ -199,9 +200,11 @@ void AlignedSampler::StartRender(Bounds2i pixelBounds, const Camera &camera) {
         // No pre-pass values and no plans; with a lens, the lens and time
         // join the lattice (a defocused edge is an edge in the film and lens
         // samples together).
-        if (s.jointDefaultDimensions && LensIsLive(camera))
-            BuildJoint(s, std::vector<int>(std::begin(kJointLensDefault), std::end(kJointLensDefault)),
-                       nullptr);
+        if (s.jointDefaultDimensions && LensIsLive(camera)) {
+            std::vector<int> dims(std::begin(kJointLensFirst), std::end(kJointLensFirst));
+            dims.insert(dims.end(), std::begin(kJointDefault), std::end(kJointDefault));
+            BuildJoint(s, dims, nullptr);
+        }
         return;
     }
     size_t pixels = size_t(pixelBounds.Area());
