@@ -1,6 +1,7 @@
 #include <alignset/joint_lattice.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -195,7 +196,7 @@ std::vector<uint32_t> SearchHead(uint32_t n, double floor) {
 
 StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uint64_t seed,
                                             const std::vector<uint32_t>& folds,
-                                            const std::vector<bool>& tents) {
+                                            const std::vector<bool>& tents, bool jitter) {
   if (n < 2 || n > 65536) return Status::InvalidArgument("joint lattice: N must be in [2, 65536], got " + std::to_string(n));
   if (dimensions < 1 || dimensions > kJointLatticeMaxDimensions) {
     return Status::InvalidArgument("joint lattice: dimensions must be in [1, " +
@@ -227,6 +228,7 @@ StatusOr<JointLattice> JointLattice::Create(uint32_t n, uint32_t dimensions, uin
   std::copy(folds.begin(), folds.end(), l.folds_.begin());
   l.tents_.assign(dimensions, false);
   std::copy(tents.begin(), tents.end(), l.tents_.begin());
+  l.jitter_ = jitter;
   l.n_ = n;
   l.mask_ = (n & (n - 1)) == 0 ? n - 1 : 0;
   l.seed_ = seed;
@@ -264,10 +266,20 @@ uint64_t JointLattice::PaddingKey(uint64_t pixel, uint32_t d) const {
 }
 
 double JointLattice::LatticeValue(uint32_t i, uint32_t d, double shift, uint64_t fold_key) const {
-  const uint64_t iz = static_cast<uint64_t>(i) * z_[d];
-  const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
-  double x = static_cast<double>(r) / n_ + shift;
-  if (x >= 1.0) x -= 1.0;
+  uint64_t iz = static_cast<uint64_t>(i) * z_[d];
+  double x;
+  if (jitter_) {
+    // The shift's top digits pick the stratum offset, all its bits (a hash
+    // of seed, pixel and dimension) key the point's place in its stratum.
+    iz += static_cast<uint32_t>(shift * n_);
+    const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
+    const double u = Unit(Mix64(HashCombine(std::bit_cast<uint64_t>(shift), i)));
+    x = std::min((static_cast<double>(r) + u) / n_, std::nextafter(1.0, 0.0));
+  } else {
+    const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
+    x = static_cast<double>(r) / n_ + shift;
+    if (x >= 1.0) x -= 1.0;
+  }
   const uint32_t h = folds_[d];
   if (h == 1) return tents_[d] ? std::min(1.0 - std::abs(2.0 * x - 1.0), std::nextafter(1.0, 0.0)) : x;
   // Which of the h copies: uniform per (pixel, sample), independent of x.

@@ -166,11 +166,13 @@ TEST(SamplerHotPath, NoAllocationPerPixelOnASharedDomain) {
 TEST(SamplerHotPath, TheJointLatticeAllocatesNothingAfterCreate) {
   // pbrt's nine dimensions and a folded wavelength, at a lattice that keeps
   // all nine (256) and one that pads past four (16): whole frames of every
-  // sample's every dimension, padding included; shifted, and shifted then
-  // folded by the tent.
-  for (const std::vector<bool>& tents : {std::vector<bool>{}, std::vector<bool>{true, true, true, true, false, true}}) {
+  // sample's every dimension, padding included; shifted, shifted then
+  // folded by the tent, and jittered.
+  for (int randomize = 0; randomize < 3; ++randomize) {
+    const std::vector<bool> tents = randomize == 1 ? std::vector<bool>{true, true, true, true, false, true}
+                                                   : std::vector<bool>{};
     for (uint32_t n : {16u, 256u}) {
-      auto l = JointLattice::Create(n, 9, 5, {1, 1, 1, 1, 4}, tents);
+      auto l = JointLattice::Create(n, 9, 5, {1, 1, 1, 1, 4}, tents, randomize == 2);
       ASSERT_TRUE(l.ok());
       volatile double sink = 0.0;
       const uint64_t before = g_allocations.load();
@@ -181,7 +183,7 @@ TEST(SamplerHotPath, TheJointLatticeAllocatesNothingAfterCreate) {
           for (uint32_t d = 0; d < 24; ++d) sink = sink + l->Sample(pixel, i, d) + view.Sample(i, d);
         }
       }
-      EXPECT_EQ(g_allocations.load() - before, 0u) << "N=" << n;
+      EXPECT_EQ(g_allocations.load() - before, 0u) << "N=" << n << ", randomization " << randomize;
     }
   }
 }

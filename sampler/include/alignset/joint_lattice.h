@@ -60,6 +60,16 @@
 // Owen-Sobol's. The price is on edges: f o phi holds an edge twice,
 // mirrored. A folded dimension is not tented: the integrand is periodic in
 // it already.
+
+// The jitter: the shift moves every point of a dimension by the same amount,
+// so a shifted lattice integrates a smooth non-periodic 1-D component (a
+// pixel's radiance along the film x, a light square's falloff) at a stratum
+// boundary's rate, N^-2 in variance. Jittered, the pixel's hash picks an
+// integer offset c_d and each point is uniform within its stratum: point i
+// is ((i z_d + c_d) mod N + u_{i,d}) / N, u uniform per (pixel, sample,
+// dimension). Each 1-D projection is then stratified sampling (N^-3), and the
+// lattice's 2-D structure moves by at most 1/N. Values stay uniform over the
+// seed, so the estimate stays unbiased.
 #include <alignset/status.h>
 
 #include <cstdint>
@@ -84,10 +94,11 @@ class JointLattice {
   // `dimensions`, or an h outside 1..64, is INVALID_ARGUMENT. tents[d]
   // (absent: false): dimension d is tented after its shift; a longer `tents`
   // than `dimensions`, or a dimension both folded and tented, is
-  // INVALID_ARGUMENT.
+  // INVALID_ARGUMENT. jitter: every lattice dimension jittered within its
+  // strata (above) instead of shifted.
   static StatusOr<JointLattice> Create(uint32_t n, uint32_t dimensions, uint64_t seed,
                                        const std::vector<uint32_t>& folds = {},
-                                       const std::vector<bool>& tents = {});
+                                       const std::vector<bool>& tents = {}, bool jitter = false);
   JointLattice() = default;
 
   uint32_t n() const { return n_; }
@@ -99,6 +110,7 @@ class JointLattice {
   const std::vector<uint32_t>& generator() const { return z_; }
   // Whether dimension d (< the dimensions asked for) is tented.
   bool tented(uint32_t d) const { return d < tents_.size() && tents_[d]; }
+  bool jittered() const { return jitter_; }
 
   // Dimension d of sample i (< n) of pixel `pixel` (the renderer's pixel
   // index, e.g. y * width + x). No checks here (an inner loop). A renderer
@@ -125,6 +137,7 @@ class JointLattice {
   std::vector<uint32_t> z_;
   std::vector<uint32_t> folds_;  // one per dimension asked for (1: not folded)
   std::vector<bool> tents_;      // one per dimension asked for
+  bool jitter_ = false;
   // The padding's Sobol direction numbers, kSobolDigits a dimension: the
   // process's one table, made at the first Create.
   const uint32_t* padding_ = nullptr;

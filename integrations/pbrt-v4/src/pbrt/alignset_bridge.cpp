@@ -200,14 +200,15 @@ JointPoints::~JointPoints() = default;
 
 std::unique_ptr<JointPoints> JointPoints::Create(int n, int dimensions, uint64_t seed,
                                                  const std::vector<uint32_t> &folds,
-                                                 const std::vector<bool> &tents,
+                                                 const std::vector<bool> &tents, bool jitter,
                                                  std::string *error) {
     if (n < 0 || dimensions < 0) {
         *error = "joint lattice: N and the dimension count must not be negative";
         return nullptr;
     }
     auto lattice =
-        alignset::JointLattice::Create(uint32_t(n), uint32_t(dimensions), seed, folds, tents);
+        alignset::JointLattice::Create(uint32_t(n), uint32_t(dimensions), seed, folds, tents,
+                                       jitter);
     if (!lattice.ok()) {
         *error = lattice.status().ToString();
         return nullptr;

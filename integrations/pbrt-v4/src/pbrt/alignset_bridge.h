@@ -87,10 +87,11 @@ class JointPoints {
     // the library refuses. folds[d]: the library's fold of lattice dimension
     // d (the period 1 / folds[d] of the integrand along it; pbrt's wavelength
     // sample has NSpectrumSamples). tents[d]: lattice dimension d's shift is
-    // followed by the tent (the library's JointLattice).
+    // followed by the tent (the library's JointLattice). jitter: each lattice
+    // dimension jittered within its strata instead of shifted.
     static std::unique_ptr<JointPoints> Create(int n, int dimensions, uint64_t seed,
                                                const std::vector<uint32_t> &folds,
-                                               const std::vector<bool> &tents,
+                                               const std::vector<bool> &tents, bool jitter,
                                                std::string *error);
     ~JointPoints();
     int Dimensions() const;

@@ -84,6 +84,7 @@ struct AlignedSampler::Shared {
     // default); "randomize" "tent", or the sampler dimensions of "tentdimensions".
     bool jointDefaultDimensions = false;
     bool jointTentAll = false;
+    bool jointJitter = false;
     std::vector<int> jointTented;
     int imageWidth = 0;  // the pixel index is y * imageWidth + x
 
@@ -449,7 +450,7 @@ void BuildJoint(AlignedSampler::Shared &s, const std::vector<int> &dims, const F
         s.jointPadOf[d] = s.jointOf[d] >= 0 ? -1 : asked + k++;
     std::string error;
     s.joint = pbrt_alignset::JointPoints::Create(t, asked, Hash(s.seed, 0x6a6f696e74), folds,
-                                                 tents, &error);
+                                                 tents, s.jointJitter, &error);
     if (!s.joint)
         ErrorExit(loc, "aligned: align \"joint\" with %d samples a pixel and %d dimensions: %s",
                   t, asked, error);
@@ -475,15 +476,17 @@ AlignedSampler *CreateJoint(std::shared_ptr<AlignedSampler::Shared> s,
     s->jointDefaultDimensions = dims.empty();
     if (dims.empty())
         dims.assign(std::begin(kJointDefault), std::end(kJointDefault));
-    // "randomize": "shift" (a Cranley-Patterson shift a pixel) or "tent"
-    // (the shift, then the tent in every lattice dimension but the folded
-    // wavelength); "tentdimensions": the shift, then the tent in those
-    // sampler dimensions of "jointdimensions" only.
+    // "randomize": "shift" (a Cranley-Patterson shift a pixel), "jitter"
+    // (each point uniform within its stratum, the strata offset a pixel) or
+    // "tent" (the shift, then the tent in every lattice dimension but the
+    // folded wavelength); "tentdimensions": the shift or the jitter, then
+    // the tent in those sampler dimensions of "jointdimensions" only.
     const std::string randomize = parameters.GetOneString("randomize", "shift");
-    if (randomize != "shift" && randomize != "tent")
-        ErrorExit(loc, "aligned: \"randomize\" \"%s\" is not \"shift\" or \"tent\".",
-                  randomize);
+    if (randomize != "shift" && randomize != "jitter" && randomize != "tent")
+        ErrorExit(loc, "aligned: \"randomize\" \"%s\" is not \"shift\", \"jitter\" or "
+                       "\"tent\".", randomize);
     s->jointTentAll = randomize == "tent";
+    s->jointJitter = randomize == "jitter";
     s->jointTented = parameters.GetIntArray("tentdimensions");
     if (!s->jointTented.empty() && randomize == "tent")
         ErrorExit(loc, "aligned: \"tentdimensions\" names the tented dimensions of "
