@@ -59,6 +59,8 @@ SAMPLERS = {
     # The same lattice, each pixel's shift followed by the tent (the folded
     # wavelength left periodic).
     "joint-tent": ("aligned", {"align": "joint", "randomize": "tent"}),
+    # Each lattice point jittered within its strata instead of shifted.
+    "joint-jitter": ("aligned", {"align": "joint", "randomize": "jitter"}),
     # The tent in the first BSDF sample only (the film and light squares
     # shifted alone; tenting the lobe and light choice too gave the same
     # images on the six path variants).
@@ -284,6 +286,8 @@ def summary(out, subject):
             with open(os.path.join(out, name)) as f:
                 results.append(json.load(f))
     spps = sorted({x["spp"] for r in results for x in r["runs"] if x["sampler"] == subject})
+    if not spps:
+        return False  # nothing of the subject's to sum up (the baselines alone)
     head = ", ".join(str(s) for s in spps)
     lines = ["# The joint lattice in pbrt-v4: summary", "",
              f"The better of zsobol's and sobol's relative MSE over {subject}'s (> 1: {subject} lower), on edge "
@@ -318,6 +322,7 @@ def summary(out, subject):
     lines.append("")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
+    return True
 
 
 def figure(result, images, path, spp, samplers):
@@ -437,8 +442,10 @@ def main():
                 figure(result, images, os.path.join(args.out, name + ".png"), args.image_spp, args.samplers)
                 wrote += ",png"
             log(f"{name}: wrote {args.out}/{name}.{{{wrote}}}")
-    summary(args.out, args.subject)
-    log(f"wrote {args.out}/summary.md")
+    if not summary(args.out, args.subject):
+        log(f"no summary: {args.out} has no run of {args.subject}")
+    else:
+        log(f"wrote {args.out}/summary.md")
     return 0
 
 
