@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -30,21 +31,23 @@ TEST(JointLattice, RefusesSizesItCannotMake) {
 
 TEST(JointLattice, EveryLatticeDimensionIsTheNStrataInEveryPixel) {
   for (uint32_t n : {64u, 192u, 256u, 1000u}) {
-    auto l = JointLattice::Create(n, 5, 7);
-    ASSERT_TRUE(l.ok());
-    EXPECT_EQ(l->generator()[0], 1u);
-    for (uint32_t z : l->generator()) EXPECT_EQ(std::gcd(z, n), 1u) << "N=" << n;
-    for (uint64_t pixel : {0ull, 5ull, 123456ull}) {
-      for (uint32_t d = 0; d < 5; ++d) {
-        std::vector<int> hit(n, 0);
-        for (uint32_t i = 0; i < n; ++i) {
-          const double x = l->Sample(pixel, i, d);
-          ASSERT_GE(x, 0.0);
-          ASSERT_LT(x, 1.0);
-          ++hit[static_cast<size_t>(x * n)];
+    for (bool jitter : {false, true}) {
+      auto l = JointLattice::Create(n, 5, 7, {}, {}, jitter);
+      ASSERT_TRUE(l.ok());
+      EXPECT_EQ(l->generator()[0], 1u);
+      for (uint32_t z : l->generator()) EXPECT_EQ(std::gcd(z, n), 1u) << "N=" << n;
+      for (uint64_t pixel : {0ull, 5ull, 123456ull}) {
+        for (uint32_t d = 0; d < 5; ++d) {
+          std::vector<int> hit(n, 0);
+          for (uint32_t i = 0; i < n; ++i) {
+            const double x = l->Sample(pixel, i, d);
+            ASSERT_GE(x, 0.0);
+            ASSERT_LT(x, 1.0);
+            ++hit[static_cast<size_t>(x * n)];
+          }
+          EXPECT_TRUE(std::all_of(hit.begin(), hit.end(), [](int h) { return h == 1; }))
+              << "N=" << n << (jitter ? " jittered" : "") << " pixel " << pixel << " dimension " << d;
         }
-        EXPECT_TRUE(std::all_of(hit.begin(), hit.end(), [](int h) { return h == 1; }))
-            << "N=" << n << " pixel " << pixel << " dimension " << d;
       }
     }
   }
@@ -269,21 +272,21 @@ double Exact() {
   return a * b * (4.0 / 3.0) * 1.0 * (1.5 - 1.0 / 3.0);
 }
 
-// The mean over `pixels` pixels of the N-sample estimate of F over
-// dimensions first_dim .. first_dim + 4, and its standard error; every value
-// read is checked to lie in [0, 1).
+// The mean over `pixels` pixels of the N-sample estimate of F over the five
+// dimensions `dims`, and its standard error; every value read is checked to
+// lie in [0, 1).
 struct PixelMean {
   double mean, standard_error;
 };
-PixelMean MeanOverPixels(const JointLattice& l, uint32_t first_dim, uint64_t pixels) {
+PixelMean MeanOverPixels(const JointLattice& l, const std::array<uint32_t, 5>& dims, uint64_t pixels) {
   double sum = 0.0, sum2 = 0.0;
   for (uint64_t p = 0; p < pixels; ++p) {
     double est = 0.0;
     for (uint32_t i = 0; i < l.n(); ++i) {
       double x[5];
-      for (uint32_t d = 0; d < 5; ++d) {
-        x[d] = l.Sample(p, i, first_dim + d);
-        EXPECT_TRUE(x[d] >= 0.0 && x[d] < 1.0) << "dimension " << first_dim + d;
+      for (uint32_t k = 0; k < 5; ++k) {
+        x[k] = l.Sample(p, i, dims[k]);
+        EXPECT_TRUE(x[k] >= 0.0 && x[k] < 1.0) << "dimension " << dims[k];
       }
       est += F(x);
     }
@@ -295,10 +298,24 @@ PixelMean MeanOverPixels(const JointLattice& l, uint32_t first_dim, uint64_t pix
   return {mean, std::sqrt((sum2 / pixels - mean * mean) / pixels)};
 }
 
+// The MSE over `pixels` pixels of the N-sample estimate of value(l, pixel,
+// i) against `exact`.
+template <typename Value>
+double MseOverPixels(const JointLattice& l, uint64_t pixels, double exact, Value value) {
+  double sum2 = 0.0;
+  for (uint64_t p = 0; p < pixels; ++p) {
+    double est = 0.0;
+    for (uint32_t i = 0; i < l.n(); ++i) est += value(l, p, i);
+    est = est / l.n() - exact;
+    sum2 += est * est;
+  }
+  return sum2 / pixels;
+}
+
 TEST(JointLattice, EveryPixelsEstimateIsUnbiasedPaddingIncluded) {
   auto l = JointLattice::Create(64, 3, 5);
   ASSERT_TRUE(l.ok());
-  const PixelMean m = MeanOverPixels(*l, 0, 4000);
+  const PixelMean m = MeanOverPixels(*l, {0, 1, 2, 3, 4}, 4000);
   EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
 }
 
@@ -375,7 +392,7 @@ TEST(JointLattice, PaddingPastTheSobolDimensionsStaysUniform) {
   auto l = JointLattice::Create(kN, 2, 3);
   ASSERT_TRUE(l.ok());
   const uint32_t past = 2 + kJointLatticeSobolDimensions;
-  const PixelMean m = MeanOverPixels(*l, past, 3000);
+  const PixelMean m = MeanOverPixels(*l, {past, past + 1, past + 2, past + 3, past + 4}, 3000);
   EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
   EXPECT_EQ(l->Sample(7, 9, past + 1), JointLattice::Create(kN, 2, 3)->Sample(7, 9, past + 1));
 }
@@ -487,20 +504,9 @@ TEST(JointLattice, TheTentFollowsTheShiftAndIsUnbiased) {
       EXPECT_EQ(tent->Sample(pixel, i, 6), shift->Sample(pixel, i, 6));  // padded
     }
   }
-  double sum = 0.0, sum2 = 0.0;
-  for (uint64_t p = 0; p < kPixels; ++p) {
-    double est = 0.0;
-    for (uint32_t i = 0; i < kN; ++i) {
-      double x[5] = {tent->Sample(p, i, 0), tent->Sample(p, i, 1), tent->Sample(p, i, 2), tent->Sample(p, i, 4),
-                     tent->Sample(p, i, 5)};
-      est += F(x);
-    }
-    est /= kN;
-    sum += est;
-    sum2 += est * est;
-  }
-  const double mean = sum / kPixels, var = sum2 / kPixels - mean * mean;
-  EXPECT_NEAR(mean, Exact(), 3.0 * std::sqrt(var / kPixels) + 1e-12);
+  // The folded dimension 3 left out: F reads the lattice's other four and one padded.
+  const PixelMean m = MeanOverPixels(*tent, {0, 1, 2, 4, 5}, kPixels);
+  EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
 }
 
 // On a smooth function of the lattice's coordinates that is not periodic,
@@ -519,14 +525,9 @@ TEST(JointLattice, TheTentGainsAnOrderOnASmoothNonPeriodicIntegrandOfTheLattices
     auto shift = JointLattice::Create(n, 3, 41);
     ASSERT_TRUE(tent.ok() && shift.ok());
     auto mse = [&](const JointLattice& l) {
-      double sum2 = 0.0;
-      for (uint64_t p = 0; p < kPixels; ++p) {
-        double est = 0.0;
-        for (uint32_t i = 0; i < n; ++i) est += g(l.Sample(p, i, 0), l.Sample(p, i, 1), l.Sample(p, i, 2));
-        est = est / n - exact;
-        sum2 += est * est;
-      }
-      return sum2 / kPixels;
+      return MseOverPixels(l, kPixels, exact, [&](const JointLattice& m, uint64_t p, uint32_t i) {
+        return g(m.Sample(p, i, 0), m.Sample(p, i, 1), m.Sample(p, i, 2));
+      });
     };
     tent_mse[k] = mse(*tent);
     shift_mse[k] = mse(*shift);
@@ -537,10 +538,10 @@ TEST(JointLattice, TheTentGainsAnOrderOnASmoothNonPeriodicIntegrandOfTheLattices
   EXPECT_LT(shift_mse[0] / shift_mse[1], 32.0) << shift_mse[0] << " -> " << shift_mse[1];
 }
 
-// The jitter: each lattice dimension still the N strata, one point each, in
-// every pixel (the strata offset by the pixel's hash, the point anywhere in
-// its stratum), the folded dimension folded as before, the padding
-// untouched, the smooth non-periodic F unbiased.
+// The jitter (its strata: EveryLatticeDimensionIsTheNStrataInEveryPixel):
+// every lattice value moved from the shift's, the folded dimension's lattice
+// coordinate frac(4 u) still the N strata, the padding untouched, the smooth
+// non-periodic F unbiased.
 TEST(JointLattice, TheJitterKeepsEachDimensionsStrataAndIsUnbiased) {
   constexpr uint32_t kN = 256, kPixels = 1500;
   auto jitter = JointLattice::Create(kN, 4, 31, {1, 1, 1, 4}, {}, true);
@@ -551,36 +552,19 @@ TEST(JointLattice, TheJitterKeepsEachDimensionsStrataAndIsUnbiased) {
   EXPECT_EQ(jitter->generator(), shift->generator());
   size_t moved = 0;
   for (uint64_t pixel : {0ull, 7ull, 99ull}) {
-    for (uint32_t d = 0; d < 4; ++d) {
-      std::vector<int> strata(kN, 0);
-      for (uint32_t i = 0; i < kN; ++i) {
-        const double x = jitter->Sample(pixel, i, d);
-        ASSERT_GE(x, 0.0);
-        ASSERT_LT(x, 1.0);
-        // The folded dimension's lattice coordinate is frac(4 u).
-        const double v = d == 3 ? 4.0 * x - std::floor(4.0 * x) : x;
-        ++strata[static_cast<size_t>(v * kN)];
-        moved += x != shift->Sample(pixel, i, d);
-      }
-      EXPECT_EQ(std::count(strata.begin(), strata.end(), 1), static_cast<long>(kN)) << "dimension " << d;
+    std::vector<int> folded_strata(kN, 0);
+    for (uint32_t i = 0; i < kN; ++i) {
+      for (uint32_t d = 0; d < 4; ++d) moved += jitter->Sample(pixel, i, d) != shift->Sample(pixel, i, d);
+      const double u = jitter->Sample(pixel, i, 3);
+      ++folded_strata[static_cast<size_t>((4.0 * u - std::floor(4.0 * u)) * kN)];
+      EXPECT_EQ(jitter->Sample(pixel, i, 6), shift->Sample(pixel, i, 6));
     }
-    for (uint32_t i = 0; i < kN; ++i) EXPECT_EQ(jitter->Sample(pixel, i, 6), shift->Sample(pixel, i, 6));
+    EXPECT_EQ(std::count(folded_strata.begin(), folded_strata.end(), 1), static_cast<long>(kN)) << "pixel " << pixel;
   }
   EXPECT_EQ(moved, 3u * 4u * kN);
-  double sum = 0.0, sum2 = 0.0;
-  for (uint64_t p = 0; p < kPixels; ++p) {
-    double est = 0.0;
-    for (uint32_t i = 0; i < kN; ++i) {
-      double x[5] = {jitter->Sample(p, i, 0), jitter->Sample(p, i, 1), jitter->Sample(p, i, 2),
-                     jitter->Sample(p, i, 4), jitter->Sample(p, i, 5)};
-      est += F(x);
-    }
-    est /= kN;
-    sum += est;
-    sum2 += est * est;
-  }
-  const double mean = sum / kPixels, var = sum2 / kPixels - mean * mean;
-  EXPECT_NEAR(mean, Exact(), 3.0 * std::sqrt(var / kPixels) + 1e-12);
+  // The folded dimension 3 left out: F reads the lattice's other four and one padded.
+  const PixelMean m = MeanOverPixels(*jitter, {0, 1, 2, 4, 5}, kPixels);
+  EXPECT_NEAR(m.mean, Exact(), 3.0 * m.standard_error + 1e-12) << "standard error " << m.standard_error;
 }
 
 // A smooth 1-D component that is not periodic (the film's radiance across a
@@ -596,14 +580,9 @@ TEST(JointLattice, TheJitterGainsAnOrderOnASmoothNonPeriodicComponent) {
     auto shift = JointLattice::Create(n, 2, 43);
     ASSERT_TRUE(jitter.ok() && shift.ok());
     auto mse = [&](const JointLattice& l) {
-      double sum2 = 0.0;
-      for (uint64_t p = 0; p < kPixels; ++p) {
-        double est = 0.0;
-        for (uint32_t i = 0; i < n; ++i) est += g(l.Sample(p, i, 0), l.Sample(p, i, 1));
-        est = est / n - exact;
-        sum2 += est * est;
-      }
-      return sum2 / kPixels;
+      return MseOverPixels(l, kPixels, exact, [&](const JointLattice& m, uint64_t p, uint32_t i) {
+        return g(m.Sample(p, i, 0), m.Sample(p, i, 1));
+      });
     };
     const double j = mse(*jitter), s = mse(*shift);
     EXPECT_LT(j * n / 8.0, s) << "N=" << n << ": jitter " << j << ", shift " << s;
