@@ -279,7 +279,8 @@ def table(result, subject):
 
 def summary(out, subject):
     """One row a scene and mode from every table in `out`: the subject against
-    the better of zsobol and sobol, at equal samples and at equal time."""
+    the better of zsobol and sobol, at equal samples and at equal time. False,
+    writing nothing, where no table has a run of the subject."""
     results = []
     for name in sorted(os.listdir(out)):
         if name.endswith(".json") and name != "summary.json":
