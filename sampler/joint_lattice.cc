@@ -266,17 +266,16 @@ uint64_t JointLattice::PaddingKey(uint64_t pixel, uint32_t d) const {
 }
 
 double JointLattice::LatticeValue(uint32_t i, uint32_t d, double shift, uint64_t fold_key) const {
-  uint64_t iz = static_cast<uint64_t>(i) * z_[d];
+  // Jittered, the shift's top digits pick the stratum offset and all its
+  // bits (a hash of seed, pixel and dimension) key the point's place in its
+  // stratum.
+  const uint64_t iz = static_cast<uint64_t>(i) * z_[d] + (jitter_ ? static_cast<uint32_t>(shift * n_) : 0);
+  const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
   double x;
   if (jitter_) {
-    // The shift's top digits pick the stratum offset, all its bits (a hash
-    // of seed, pixel and dimension) key the point's place in its stratum.
-    iz += static_cast<uint32_t>(shift * n_);
-    const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
     const double u = Unit(Mix64(HashCombine(std::bit_cast<uint64_t>(shift), i)));
     x = std::min((static_cast<double>(r) + u) / n_, std::nextafter(1.0, 0.0));
   } else {
-    const uint32_t r = static_cast<uint32_t>(mask_ != 0 ? iz & mask_ : iz % n_);
     x = static_cast<double>(r) / n_ + shift;
     if (x >= 1.0) x -= 1.0;
   }
