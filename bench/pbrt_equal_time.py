@@ -23,6 +23,19 @@ spp) for the next run. Equal time: each baseline's error at the subject's median
 wall-clock time, interpolated in log-log between the baseline's measured
 spp (extrapolated along its last segment, marked *, beyond them).
 
+The floor (--floor, or --add-floor for tables already measured): the part of
+every sampler's error that no sampler reaches. pbrt's layered BSDFs
+(coateddiffuse, coatedconductor) evaluate and sample themselves by a random
+walk whose random numbers come from pbrt's --seed hashed with the
+directions, not from the sampler. zsobol is rendered twice with its own
+seed fixed and two --seed values: the sampler's points are the same, the
+walk's numbers are not, and half the two images' squared difference (the
+relative error's normalisation, trimmed as the errors are) is that walk's
+variance. It is the same for every sampler in expectation (each samples the
+same directions' distribution), so each table also gives every sampler's
+error net of it, at equal samples and at equal time. The acceptance figures
+stay the raw ones: a user's render has the floor in it.
+
 It runs pbrt's binary and reads the PFM images it writes; it shares no code
 with the samplers it measures.
 """
@@ -70,6 +83,10 @@ SAMPLERS = {
     # camera has a lens (there the default puts them after the film).
     "joint-pinhole": ("aligned", {"align": "joint", "jointdimensions": [5, 6, 0, 8, 9, 7, 4]}),
 }
+# The floor's renders: zsobol's own seed, and two --seed values no measured
+# render uses.
+FLOOR_SAMPLER_SEED = 77
+FLOOR_SEEDS = (800001, 800002)
 # Pixels from a pixel's centre that pbrt's gaussian filter (radius 1.5) reaches.
 FILTER_REACH = 2
 SCENES = ["soft_shadows", "silhouettes", "thin_texture", "cornell_box", "room_sphere_light", "room_rect_light",
@@ -102,9 +119,13 @@ class Renderer:
         self.pbrt, self.res, self.work, self.threads, self.table = pbrt, res, work, threads, table
         self.count = 0
 
-    def render(self, text, sampler, spp, seed):
+    def render(self, text, sampler, spp, seed, sampler_seed=None):
+        """sampler_seed: the sampler's own "seed" parameter, which otherwise
+        is pbrt's --seed (the layered BSDFs' walk reads --seed alone)."""
         name, params = SAMPLERS[sampler]
         params = dict(params)
+        if sampler_seed is not None:
+            params["seed"] = sampler_seed
         if name == "aligned" and params.get("align") != "joint":
             params["table"] = self.table
         self.count += 1
@@ -140,22 +161,44 @@ def trimmed_mean(values, trim=0.001):
     return float(v[:keep].mean())
 
 
-def measure(r, scene_dir, scene, mode, args, log):
-    text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
-    ref_spp = args.ref_spp or args.ref_factor * max(args.spp)
+def floor(r, text, spp, ref, edge_mask, image_mask):
+    """The floor at spp (the module's docstring): zsobol twice, its seed
+    fixed, --seed changed; half the images' relative squared difference."""
+    a, sa = r.render(text, "zsobol", spp, FLOOR_SEEDS[0], FLOOR_SAMPLER_SEED)
+    b, sb = r.render(text, "zsobol", spp, FLOOR_SEEDS[1], FLOOR_SAMPLER_SEED)
+    d = (((a - b) ** 2) / (ref ** 2 + 1e-4)).mean(axis=2) / 2
+    return {"spp": spp, "edge": trimmed_mean(d[edge_mask]), "all": trimmed_mean(d[image_mask]),
+            "seconds": float(np.median([sa, sb]))}
+
+
+def add_floors(result, floors):
+    """result's floors with `floors` in, replacing those at the same spp."""
+    kept = [f for f in result.get("floors", []) if f["spp"] not in {x["spp"] for x in floors}]
+    result["floors"] = sorted(kept + floors, key=lambda f: f["spp"])
+
+
+def reference(r, text, scene, mode, ref_spp, args, log):
+    """The reference image and its seconds: from --ref-cache, or rendered
+    (zsobol, seed 900001: the same image every time) and kept there."""
     key = hashlib.sha256(f"{text}|{args.res}|{ref_spp}".encode()).hexdigest()[:16]
     cached = os.path.join(args.ref_cache, f"{scene}_{mode}_{key}.npz") if args.ref_cache else None
     if cached and os.path.exists(cached):
         with np.load(cached) as z:
-            ref, ref_seconds = z["image"], float(z["seconds"])
-        log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp, from {cached}")
-    else:
-        log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp")
-        ref, ref_seconds = r.render(text, "zsobol", ref_spp, 900001)
-        if cached:
-            os.makedirs(args.ref_cache, exist_ok=True)
-            np.savez(cached + ".tmp.npz", image=ref, seconds=ref_seconds)
-            os.replace(cached + ".tmp.npz", cached)
+            log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp, from {cached}")
+            return z["image"], float(z["seconds"])
+    log(f"{scene} ({mode}): reference, zsobol at {ref_spp} spp")
+    ref, ref_seconds = r.render(text, "zsobol", ref_spp, 900001)
+    if cached:
+        os.makedirs(args.ref_cache, exist_ok=True)
+        np.savez(cached + ".tmp.npz", image=ref, seconds=ref_seconds)
+        os.replace(cached + ".tmp.npz", cached)
+    return ref, ref_seconds
+
+
+def measure(r, scene_dir, scene, mode, args, log):
+    text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
+    ref_spp = args.ref_spp or args.ref_factor * max(args.spp)
+    ref, ref_seconds = reference(r, text, scene, mode, ref_spp, args, log)
     edge_mask, image_mask = masks(ref, args.edge_tau)
     result = {"scene": scene, "mode": mode, "res": args.res, "ref_spp": ref_spp,
               "ref_seconds": ref_seconds, "edge_pixels": int(edge_mask.sum()),
@@ -180,7 +223,32 @@ def measure(r, scene_dir, scene, mode, args, log):
             result["runs"].append(run)
             log(f"  {sampler:>22} {spp:>5} spp: edge {run['edge']:.3e} +- {run['edge_se']:.1e}  "
                 f"all {run['all']:.3e} +- {run['all_se']:.1e}  {run['seconds']:.2f} s")
+        if args.floor:
+            f = floor(r, text, spp, ref, edge_mask, image_mask)
+            add_floors(result, [f])
+            log(f"  {'floor':>22} {spp:>5} spp: edge {f['edge']:.3e}  all {f['all']:.3e}")
     return result, images
+
+
+def measure_floor(r, scene_dir, scene, mode, args, log):
+    """--add-floor: the floor at args.spp added to the stored table of
+    (scene, mode), against the table's own reference and edge pixels."""
+    name = f"{scene}_{mode}"
+    path = os.path.join(args.out, name + ".json")
+    with open(path) as f:
+        result = json.load(f)
+    text = scene_text(os.path.join(scene_dir, scene + ".pbrt"), mode)
+    ref, _ = reference(r, text, scene, mode, result["ref_spp"], args, log)
+    edge_mask, image_mask = masks(ref, args.edge_tau)
+    if int(edge_mask.sum()) != result["edge_pixels"]:
+        raise RuntimeError(f"{path}: {result['edge_pixels']} edge pixels, this reference {int(edge_mask.sum())} "
+                           f"(another --edge-tau or --res?)")
+    floors = []
+    for spp in args.spp:
+        floors.append(floor(r, text, spp, ref, edge_mask, image_mask))
+        log(f"  {name} floor {spp:>5} spp: edge {floors[-1]['edge']:.3e}  all {floors[-1]['all']:.3e}")
+    add_floors(result, floors)
+    write_table(args, name, result)
 
 
 def retime(r, old, scene_dir, scene, mode, args, log):
@@ -224,8 +292,20 @@ def write_table(args, name, result):
         f.write(table(result, args.subject) + "\n")
 
 
+def net_runs(result):
+    """The runs at the spp the floor was measured at, each error net of the
+    floor (None where the floor is not below it)."""
+    floors = {f["spp"]: f for f in result.get("floors", [])}
+    out = []
+    for x in result["runs"]:
+        f = floors.get(x["spp"])
+        if f:
+            out.append(dict(x, **{k: (x[k] - f[k] if x[k] > f[k] else None) for k in ("edge", "all")}))
+    return out
+
+
 def equal_time(runs, baseline, seconds, region):
-    pts = sorted((x["seconds"], x[region]) for x in runs if x["sampler"] == baseline)
+    pts = sorted((x["seconds"], x[region]) for x in runs if x["sampler"] == baseline and x[region] is not None)
     return loglog_at([t for t, _ in pts], [e for _, e in pts], seconds)
 
 
@@ -274,7 +354,50 @@ def table(result, subject):
                 cells.append(f"**{best:.2f}**" if best is not None else "–")
         lines.append(f"| {spp} | {a['seconds'] / z['seconds']:.2f} | " + " | ".join(cells) + " |")
     lines.append("")
+    if result.get("floors"):
+        lines += floor_table(result, subject)
     return "\n".join(lines)
+
+
+def better_net(result, subject, spp, region, timed):
+    """The better baseline's error net of the floor over the subject's, at
+    equal samples (timed False) or at the subject's time: (ratio or None,
+    extrapolated)."""
+    net = net_runs(result)
+    a = next((x for x in net if x["sampler"] == subject and x["spp"] == spp), None)
+    if not a or a[region] is None:
+        return None, False
+    if not timed:
+        same = [x[region] for x in net if x["sampler"] in BASELINES and x["spp"] == spp and x[region] is not None]
+        return (min(same) / a[region], False) if same else (None, False)
+    timed_values = [equal_time(net, b, a["seconds"], region) for b in BASELINES]
+    timed_values = [(v, extra) for v, extra in timed_values if v is not None]
+    if not timed_values:
+        return None, False
+    v, extra = min(timed_values)
+    return v / a[region], extra
+
+
+def floor_table(result, subject):
+    by = {(x["sampler"], x["spp"]): x for x in result["runs"]}
+    lines = ["The floor: the part of every sampler's error that pbrt's layered BSDFs' own random walk makes "
+             "(zsobol twice, its seed fixed, pbrt's --seed changed: half the two images' relative squared "
+             "difference); no sampler reaches it. Its share of the subject's error, and the better of zsobol "
+             f"and sobol over {subject} with every error net of it (> 1: {subject} lower; * extrapolated; – "
+             "where the floor is not below an error).", "",
+             "| spp | floor, edge (share of the subject's) | floor, image | edge net, equal spp | edge net, equal time "
+             "| image net, equal time |", "|---:|---:|---:|---:|---:|---:|"]
+    for f in result["floors"]:
+        a = by.get((subject, f["spp"]))
+        share = lambda region: f" ({f[region] / a[region]:.0%})" if a else ""  # noqa: E731
+        cells = []
+        for region, timed in (("edge", False), ("edge", True), ("all", True)):
+            v, extra = better_net(result, subject, f["spp"], region, timed)
+            cells.append(f"{v:.2f}{'*' if extra else ''}" if v is not None else "–")
+        lines.append(f"| {f['spp']} | {f['edge']:.2e}{share('edge')} | {f['all']:.2e}{share('all')} | "
+                     + " | ".join(cells) + " |")
+    lines.append("")
+    return lines
 
 
 def summary(out, subject):
@@ -297,6 +420,12 @@ def summary(out, subject):
              f"{spps[-1]} spp. Every number's table, with standard errors: the scene's .md beside this file.", "",
              f"| scene | mode | edge, equal spp (at {head} spp) | edge, equal time | image, equal spp | image, equal time "
              f"| time / zsobol's |", "|---|---|---|---|---|---|---:|"]
+    floored = any(r.get("floors") for r in results)
+    if floored:
+        lines[-2] = lines[-2].replace(" | time / zsobol's |", " | edge, equal time, net of the floor | time / zsobol's |")
+        lines[-1] = lines[-1][:-len("---:|")] + "---|---:|"
+        lines[2] += (" The floor, where measured (–: not): each error net of what pbrt's layered BSDFs' own random "
+                     "walk adds to every sampler's (the scene's table says how it is measured).")
     for r in results:
         by = {(x["sampler"], x["spp"]): x for x in r["runs"]}
         cols = {k: [] for k in ("edge_spp", "edge_time", "all_spp", "all_time")}
@@ -319,6 +448,9 @@ def summary(out, subject):
         last = spps[-1]
         a, z = by.get((subject, last)), by.get(("zsobol", last))
         t = f"{a['seconds'] / z['seconds']:.2f}" if a and z else "–"
+        if floored:
+            nets = [better_net(r, subject, spp, "edge", True) for spp in spps]
+            cols["edge_net"] = [f"{v:.2f}{'*' if extra else ''}" if v is not None else "–" for v, extra in nets]
         lines.append(f"| {r['scene']} | {r['mode']} | " + " | ".join(", ".join(cols[k]) for k in cols) + f" | {t} |")
     lines.append("")
     with open(os.path.join(out, "summary.md"), "w") as f:
@@ -384,6 +516,11 @@ def main():
                          "errors: for a change to a sampler's speed that leaves its images as they were. "
                          "OLD_PBRT is the binary the tables were measured with; each alignset sampler's seed-1 "
                          "render at each spp must be byte for byte OLD_PBRT's, or the run stops")
+    ap.add_argument("--floor", action="store_true",
+                    help="measure the floor too (the module's docstring): two zsobol renders more at each spp")
+    ap.add_argument("--add-floor", action="store_true",
+                    help="measure only the floor at --spp and add it to the tables already in --out, against "
+                         "each table's own reference (from --ref-cache, or rendered again: the same image)")
     ap.add_argument("--edge-tau", type=float, default=0.03)
     ap.add_argument("--ref-cache", default="build/pbrt-v4/references",
                     help="keeps each reference, keyed by the scene's text, resolution and spp ('' for none)")
@@ -411,6 +548,13 @@ def main():
 
     with tempfile.TemporaryDirectory() as work:
         r = Renderer(os.path.abspath(args.pbrt), args.res, work, args.threads, os.path.abspath(args.table))
+        if args.add_floor:
+            for v in args.variants.split(","):
+                scene, mode = (v.split(":") + ["direct"])[:2]
+                measure_floor(r, os.path.abspath(args.scenes), scene, mode, args, log)
+            summary(args.out, args.subject)
+            log(f"wrote {args.out}/summary.md")
+            return 0
         if args.retime:
             old = Renderer(os.path.abspath(args.retime), args.res, work, args.threads, os.path.abspath(args.table))
             old.count = 1 << 20  # its own file names
@@ -437,6 +581,10 @@ def main():
                 result["runs"] = sorted(kept + result["runs"],
                                         key=lambda x: (x["spp"], order.index(x["sampler"])
                                                        if x["sampler"] in order else 99))
+                measured, result["floors"] = result.get("floors", []), before.get("floors", [])
+                add_floors(result, measured)
+                if not result["floors"]:
+                    del result["floors"]
             write_table(args, name, result)
             wrote = "json,md"
             if not (args.merge and args.image_spp not in args.spp):  # a merge at other spp keeps the figure
