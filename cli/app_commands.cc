@@ -37,6 +37,7 @@ void AddEveryCommand(CLI::App& app) {
   AddConvergenceCommand(app);
   AddDirectionCommand(app);
   AddTableCommand(app);
+  AddJointCommand(app);
 #ifdef ALIGNSET_HAVE_STORAGE
   AddCacheCommand(app);
   AddExportCommand(app);

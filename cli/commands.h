@@ -18,6 +18,8 @@ void AddAnalyzeCommand(CLI::App& app);
 void AddConvergenceCommand(CLI::App& app);
 // The principal direction of an integrand patch (core/analysis).
 void AddDirectionCommand(CLI::App& app);
+// The joint lattice a renderer's pixel gets (cli/cmd_joint.cc).
+void AddJointCommand(CLI::App& app);
 // The table file of lattices, searched here without a server (cli/cmd_table.cc).
 void AddTableCommand(CLI::App& app);
 #ifdef ALIGNSET_HAVE_STORAGE
