@@ -22,7 +22,11 @@ and its joint lattice (align "joint") on a tiny soft-shadow scene
     dimension, one sample a pixel, a pre-pass asked of a mode without one;
  7. the camera decides the default's dimensions: with a pinhole the lattice
     is the default's, with a thin lens the lens and time join it (byte for
-    byte the lattices "jointdimensions" names).
+    byte the lattices "jointdimensions" names);
+ 8. randomize "jitter" gives another image than the shift's, unbiased;
+ 9. the benchmark's floor: with the sampler's seed fixed, pbrt's --seed
+    changes nothing on a diffuse scene and, with a coated floor, changes the
+    image by a walk whose variance falls as 1/N.
 
   test_pbrt_sampler.py PBRT MAKE_TABLE_SH BUILD_DIR
 
@@ -249,6 +253,32 @@ def main():
         check(not np.array_equal(pen.image(jitter, 64, 3), pen_joint),
               "randomize \"jitter\": another image than the shift's")
         check_unbiased(jitter, "joint, jittered")
+
+        # 9. The benchmark's floor (bench/pbrt_equal_time.py --floor) rests on
+        # pbrt's --seed reaching only the layered BSDFs' random walk once the
+        # sampler's seed is fixed: the same image without a layered
+        # material, another with one, and a walk's variance that falls as
+        # 1/N (half the two images' squared difference, 64 to 256 spp).
+        fixed = 'Sampler "zsobol" "integer seed" [ 77 ]'
+        check(np.array_equal(pen.image(fixed, 64, 11), pen.image(fixed, 64, 12)),
+              "the floor: --seed changes nothing but the layered walk (a diffuse scene, sampler seed fixed)")
+        coated_scene = os.path.join(work, "tiny_penumbra_coated.pbrt")
+        with open(PENUMBRA) as f:
+            text = f.read().replace('Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]',
+                                    'Material "coateddiffuse" "rgb reflectance" [ 0.7 0.7 0.7 ] '
+                                    '"float roughness" [ 0.1 ]')
+        assert "coateddiffuse" in text, "tiny_penumbra.pbrt's floor material changed: update this test"
+        with open(coated_scene, "w") as g:
+            g.write(text)
+        coated = Pbrt(pbrt_bin, work, coated_scene)
+        walk = {}
+        for spp in (64, 256):
+            a, b = coated.image(fixed, spp, 11), coated.image(fixed, spp, 12)
+            walk[spp] = float((((a - b) ** 2).mean(axis=2) / 2).mean())
+        print(f"the floor on the coated floor: {walk[64]:.3e} at 64 spp, {walk[256]:.3e} at 256 "
+              f"({walk[64] / max(walk[256], 1e-30):.2f}x)")
+        check(walk[64] > 0 and 2.5 < walk[64] / max(walk[256], 1e-30) < 6.5,
+              "the floor: a layered material's walk changes with --seed and its variance falls as 1/N")
 
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0
