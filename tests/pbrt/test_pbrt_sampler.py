@@ -117,6 +117,17 @@ class Reference:
         return float(np.mean([((img - self.image) ** 2).mean(axis=2)[self.edge].mean() for img in images]))
 
 
+def penumbra_variant(pbrt_bin, work, name, line, replacement):
+    """tests/pbrt/tiny_penumbra.pbrt with one line replaced, as a Pbrt."""
+    with open(PENUMBRA) as f:
+        text = f.read()
+    assert line in text, f"tiny_penumbra.pbrt has no {line!r} any more: update this test"
+    path = os.path.join(work, f"tiny_penumbra_{name}.pbrt")
+    with open(path, "w") as g:
+        g.write(text.replace(line, replacement))
+    return Pbrt(pbrt_bin, work, path)
+
+
 def main():
     if len(sys.argv) != 4:
         print(__doc__)
@@ -232,15 +243,9 @@ def main():
         pen_joint = pen.image(joint, 64, 3)
         check(np.array_equal(pen_joint, pen.image(named_default, 64, 3)),
               "a pinhole camera: joint's lattice is the default's")
-        lens_scene = os.path.join(work, "tiny_penumbra_lens.pbrt")
-        with open(PENUMBRA) as f:
-            text = f.read().replace('Camera "perspective" "float fov" [ 32 ]',
-                                    'Camera "perspective" "float fov" [ 32 ] "float lensradius" [ 0.05 ] '
-                                    '"float focaldistance" [ 1.2 ]')
-        assert "lensradius" in text, "tiny_penumbra.pbrt's camera line changed: update this test"
-        with open(lens_scene, "w") as g:
-            g.write(text)
-        lens = Pbrt(pbrt_bin, work, lens_scene)
+        lens = penumbra_variant(pbrt_bin, work, "lens", 'Camera "perspective" "float fov" [ 32 ]',
+                                'Camera "perspective" "float fov" [ 32 ] "float lensradius" [ 0.05 ] '
+                                '"float focaldistance" [ 1.2 ]')
         lens_joint = lens.image(joint, 64, 3)
         check(np.array_equal(lens_joint, lens.image(named_lens, 64, 3)),
               "a thin lens: the lens and time join joint's lattice after the film")
@@ -262,15 +267,9 @@ def main():
         fixed = 'Sampler "zsobol" "integer seed" [ 77 ]'
         check(np.array_equal(pen.image(fixed, 64, 11), pen.image(fixed, 64, 12)),
               "the floor: --seed changes nothing but the layered walk (a diffuse scene, sampler seed fixed)")
-        coated_scene = os.path.join(work, "tiny_penumbra_coated.pbrt")
-        with open(PENUMBRA) as f:
-            text = f.read().replace('Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]',
-                                    'Material "coateddiffuse" "rgb reflectance" [ 0.7 0.7 0.7 ] '
-                                    '"float roughness" [ 0.1 ]')
-        assert "coateddiffuse" in text, "tiny_penumbra.pbrt's floor material changed: update this test"
-        with open(coated_scene, "w") as g:
-            g.write(text)
-        coated = Pbrt(pbrt_bin, work, coated_scene)
+        coated = penumbra_variant(pbrt_bin, work, "coated", 'Material "diffuse" "rgb reflectance" [ 0.7 0.7 0.7 ]',
+                                  'Material "coateddiffuse" "rgb reflectance" [ 0.7 0.7 0.7 ] '
+                                  '"float roughness" [ 0.1 ]')
         walk = {}
         for spp in (64, 256):
             a, b = coated.image(fixed, spp, 11), coated.image(fixed, spp, 12)
