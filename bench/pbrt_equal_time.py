@@ -389,12 +389,12 @@ def floor_table(result, subject):
              "| image net, equal time |", "|---:|---:|---:|---:|---:|---:|"]
     for f in result["floors"]:
         a = by.get((subject, f["spp"]))
-        share = lambda region: f" ({f[region] / a[region]:.0%})" if a else ""  # noqa: E731
+        share = {region: f" ({f[region] / a[region]:.0%})" if a else "" for region in ("edge", "all")}
         cells = []
         for region, timed in (("edge", False), ("edge", True), ("all", True)):
             v, extra = better_net(result, subject, f["spp"], region, timed)
             cells.append(f"{v:.2f}{'*' if extra else ''}" if v is not None else "–")
-        lines.append(f"| {f['spp']} | {f['edge']:.2e}{share('edge')} | {f['all']:.2e}{share('all')} | "
+        lines.append(f"| {f['spp']} | {f['edge']:.2e}{share['edge']} | {f['all']:.2e}{share['all']} | "
                      + " | ".join(cells) + " |")
     lines.append("")
     return lines
@@ -413,19 +413,18 @@ def summary(out, subject):
     if not spps:
         return False  # nothing of the subject's to sum up (the baselines alone)
     head = ", ".join(str(s) for s in spps)
+    floored = any(r.get("floors") for r in results)
+    net_note = (" The floor, where measured (–: not): each error net of what pbrt's layered BSDFs' own random walk "
+                "adds to every sampler's (the scene's table says how it is measured).") if floored else ""
+    net_head = "edge, equal time, net of the floor | " if floored else ""
     lines = ["# The joint lattice in pbrt-v4: summary", "",
              f"The better of zsobol's and sobol's relative MSE over {subject}'s (> 1: {subject} lower), on edge "
              f"pixels and on the whole image, at equal samples and at equal time (* extrapolated beyond the "
              f"baseline's measured spp); the last column {subject}'s frame time over zsobol's at "
-             f"{spps[-1]} spp. Every number's table, with standard errors: the scene's .md beside this file.", "",
+             f"{spps[-1]} spp. Every number's table, with standard errors: the scene's .md beside this file." + net_note,
+             "",
              f"| scene | mode | edge, equal spp (at {head} spp) | edge, equal time | image, equal spp | image, equal time "
-             f"| time / zsobol's |", "|---|---|---|---|---|---|---:|"]
-    floored = any(r.get("floors") for r in results)
-    if floored:
-        lines[-2] = lines[-2].replace(" | time / zsobol's |", " | edge, equal time, net of the floor | time / zsobol's |")
-        lines[-1] = lines[-1][:-len("---:|")] + "---|---:|"
-        lines[2] += (" The floor, where measured (–: not): each error net of what pbrt's layered BSDFs' own random "
-                     "walk adds to every sampler's (the scene's table says how it is measured).")
+             f"| {net_head}time / zsobol's |", "|---|---|---|---|---|---|" + ("---|" if floored else "") + "---:|"]
     for r in results:
         by = {(x["sampler"], x["spp"]): x for x in r["runs"]}
         cols = {k: [] for k in ("edge_spp", "edge_time", "all_spp", "all_time")}
