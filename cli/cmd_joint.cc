@@ -9,13 +9,17 @@
 #include <alignset/joint_lattice.h>
 #include <alignset/npy.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/json_text.h"
+#include "cli/plot_script.h"
 #include "cli/point_file.h"
 #include "client/whole_file.h"
 
@@ -32,7 +36,12 @@ struct JointOptions {
   bool jitter = false;
   int64_t padded = 0;
   std::string out;
+  std::string png;
 };
+
+// The dimensions --png draws (every pair of them): more would be panels too
+// small to read.
+constexpr uint32_t kPlottedDimensions = 5;
 
 int Usage(const Status& s) { return ReportError("joint", s, kExitUsage); }
 
@@ -80,6 +89,39 @@ Status WriteValues(const std::string& path, uint32_t n, uint32_t columns, const 
   return WriteWholeFile(path, text);
 }
 
+// scripts/plot_analysis.py's "joint" document: the pixel's values in the
+// first lattice dimensions (columns; a folded one as its lattice coordinate
+// frac(h u), what the integrand sees and the spacing is of) and each pair's
+// spacing.
+std::string PlotJson(const JointLattice& lattice, const std::vector<uint32_t>& folds,
+                     const std::vector<double>& values, uint32_t columns, const std::string& title) {
+  const uint32_t k = std::min(lattice.dimensions(), kPlottedDimensions);
+  const std::vector<uint32_t>& z = lattice.generator();
+  std::string json = "{\"kind\": \"joint\", \"title\": " + JsonString(title) + ", \"labels\": [";
+  for (uint32_t d = 0; d < k; ++d) {
+    const std::string label = "d" + std::to_string(d);
+    json += (d ? ", " : "") +
+            JsonString(folds[d] > 1 ? label + " as frac(" + std::to_string(folds[d]) + " u)" : label);
+  }
+  json += "], \"columns\": [";
+  for (uint32_t d = 0; d < k; ++d) {
+    std::vector<double> column(lattice.n());
+    for (uint32_t i = 0; i < lattice.n(); ++i) {
+      const double u = values[size_t(i) * columns + d] * folds[d];
+      column[i] = u - std::floor(u);
+    }
+    json += (d ? ", " : "") + JsonArray(column);
+  }
+  json += "], \"spacing\": [";
+  for (uint32_t b = 1; b < k; ++b) {
+    for (uint32_t a = 0; a < b; ++a) {
+      json += (a + b > 1 ? ", [" : "[") + std::to_string(a) + ", " + std::to_string(b) + ", " +
+              JsonNumber(JointLatticePairSpacing(lattice.n(), z[a], z[b])) + "]";
+    }
+  }
+  return json + "]}";
+}
+
 int RunJoint(const JointOptions& o) {
   if (o.n == 0) return Usage(Status::InvalidArgument("--n is required"));
   if (o.dimensions == 0) return Usage(Status::InvalidArgument("--dimensions is required"));
@@ -123,7 +165,7 @@ int RunJoint(const JointOptions& o) {
     if (folds[d] > 1) std::fprintf(report, "d%u folded: period 1/%u, the lattice coordinate is frac(%u u)\n", d, folds[d], folds[d]);
     if (lattice.tented(d)) std::fprintf(report, "d%u tented\n", d);
   }
-  if (o.out.empty()) return kExitOk;
+  if (o.out.empty() && o.png.empty()) return kExitOk;
 
   const uint32_t columns = dims + static_cast<uint32_t>(o.padded);
   std::vector<double> values(size_t(n) * columns);
@@ -134,11 +176,20 @@ int RunJoint(const JointOptions& o) {
                               " seed=" + std::to_string(o.seed) + " pixel=" + std::to_string(o.pixel) +
                               (o.jitter ? " jittered" : " shifted") +
                               (o.padded ? " padded=" + std::to_string(o.padded) : "");
-  if (Status s = WriteValues(o.out, n, columns, values, comment); !s.ok()) {
-    return ReportError("joint", s, kExitFailure);
+  if (!o.out.empty()) {
+    if (Status s = WriteValues(o.out, n, columns, values, comment); !s.ok()) {
+      return ReportError("joint", s, kExitFailure);
+    }
+    std::fprintf(report, "wrote pixel %llu's %u points in %u dimensions to %s\n",
+                 static_cast<unsigned long long>(o.pixel), n, columns, o.out.c_str());
   }
-  std::fprintf(report, "wrote pixel %llu's %u points in %u dimensions to %s\n",
-               static_cast<unsigned long long>(o.pixel), n, columns, o.out.c_str());
+  if (!o.png.empty()) {
+    if (Status s = WritePlot(PlotJson(lattice, folds, values, columns, comment), o.png); !s.ok()) {
+      return ReportError("joint", s, kExitFailure);
+    }
+    std::fprintf(report, "wrote the 2-D projections of the first %u dimensions to %s\n",
+                 std::min(lattice.dimensions(), kPlottedDimensions), o.png.c_str());
+  }
   return kExitOk;
 }
 
@@ -149,7 +200,8 @@ void AddJointCommand(CLI::App& app) {
   CLI::App* c = AddCommand(app, "joint",
                            "the joint lattice a renderer's pixel gets (the sampler library's JointLattice, pbrt's\n"
                            "align \"joint\"): its generator, the dimensions it keeps, every 2-D projection's\n"
-                           "spacing; --out: one pixel's points in every dimension (.npy (N, D), .csv, text; - stdout)");
+                           "spacing; --out: one pixel's points in every dimension (.npy (N, D), .csv, text; - stdout);\n"
+                           "--png: their 2-D projections");
   c->add_option("-n,--n", o->n, "points a pixel (the renderer's samples a pixel)")->check(IntegerIn(2, 65536));
   c->add_option("-d,--dimensions", o->dimensions, "the dimensions asked for the lattice")
       ->check(IntegerIn(1, kJointLatticeMaxDimensions));
@@ -164,6 +216,8 @@ void AddJointCommand(CLI::App& app) {
   c->add_option("--padded", o->padded, "with --out, this many padded dimensions more")
       ->check(IntegerIn(0, 64));
   c->add_option("-o,--out", o->out, "the pixel's points: .npy (N, D), .csv, text; - stdout");
+  c->add_option("--png", o->png, "a figure of the pixel's points: every 2-D projection of the first five "
+                                 "lattice dimensions, each with its spacing");
   OnRun(c, [o] { return RunJoint(*o); });
 }
 

@@ -4,8 +4,9 @@
   /usr/bin/python3 scripts/plot_analysis.py DATA.json --out FIG.png
 
 DATA.json is what `alignset analyze --json` or `alignset convergence --json`
-prints ("kind": "spectrum" or "convergence"); `--png` on those commands runs
-this script itself. A list of spectrum documents (a JSON array) draws one row
+prints ("kind": "spectrum" or "convergence"), or what `alignset joint --png`
+hands it ("kind": "joint": a pixel's 2-D projections); `--png` on those
+commands runs this script itself. A list of spectrum documents (a JSON array) draws one row
 of spectra side by side, which bench/figures uses for its spectrum panel.
 """
 import argparse
@@ -110,6 +111,40 @@ def plot_convergence(doc, out):
     fig.savefig(out, dpi=100)
 
 
+def plot_joint(doc, out):
+    """A joint lattice's pixel (alignset joint --png): every 2-D projection
+    of its first dimensions, each titled with the pair's spacing (the
+    shortest dual vector against the hexagonal lattice's)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cols = [np.array(c, float) for c in doc["columns"]]
+    k = len(cols)
+    if k < 2:
+        sys.exit("plot_analysis: a joint document needs two dimensions or more to draw a pair")
+    spacing = {(int(a), int(b)): s for a, b, s in doc["spacing"]}
+    labels = doc.get("labels") or [f"d{d}" for d in range(k)]
+    fig, axes = plt.subplots(k - 1, k - 1, figsize=(2.6 * (k - 1), 2.6 * (k - 1)), squeeze=False)
+    for b in range(1, k):
+        for a in range(k - 1):
+            ax = axes[b - 1][a]
+            if a >= b:
+                ax.axis("off")
+                continue
+            ax.scatter(cols[a], cols[b], s=max(0.5, 400 / len(cols[a])), lw=0)
+            ax.set_xlim(0, 1)
+            ax.set_ylim(0, 1)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            s = spacing.get((a, b))
+            ax.set_title(f"{labels[a]}, {labels[b]}" + (f": {s:.2f}" if s is not None else ""), fontsize=8)
+    if doc.get("title"):
+        fig.suptitle(doc["title"], fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -128,8 +163,10 @@ def main():
             plot_spectra(docs, args.out)
         elif kinds == {"convergence"} and len(docs) == 1:
             plot_convergence(docs[0], args.out)
+        elif kinds == {"joint"} and len(docs) == 1:
+            plot_joint(docs[0], args.out)
         else:
-            sys.exit(f"plot_analysis: {args.data}: expected one convergence document or "
+            sys.exit(f"plot_analysis: {args.data}: expected one convergence or joint document or "
                      f"spectrum documents, got {sorted(map(str, kinds))}")
     except OSError as e:
         sys.exit(f"plot_analysis: cannot write {args.out}: {e}")

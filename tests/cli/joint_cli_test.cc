@@ -71,6 +71,19 @@ TEST(JointCli, CsvHasAHeaderAndOneRowASample) {
   std::remove(out.c_str());
 }
 
+TEST(JointCli, DrawsThePixelsProjections) {
+  const std::string png = test_support::CliTempPath("joint.png");
+  std::remove(png.c_str());
+  const CliRun r = Cli("joint -n 64 -d 4 --fold 3:4 --png " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream f(png, std::ios::binary);
+  char magic[4] = {};
+  f.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG") << "no PNG at " << png << ": " << r.err;
+  EXPECT_NE(r.out.find("2-D projections of the first 4 dimensions"), std::string::npos) << r.out;
+  std::remove(png.c_str());
+}
+
 TEST(JointCli, BadInputIsOneLineAndNonZero) {
   const std::string out = test_support::CliTempPath("joint_bad.npy");
   for (const std::string& args : std::vector<std::string>{
