@@ -3,7 +3,8 @@
 // generator, how many of the dimensions asked for the lattice keeps at this
 // N, every 2-D projection's spacing and the search's time; with --out, one
 // pixel's N points in every dimension asked (the padding's too), as the
-// renderer reads them. The sampler library searches the generator at Create
+// renderer reads them; with --png, a figure of their 2-D projections. The
+// sampler library searches the generator at Create
 // in milliseconds (seconds at N = 65536), so no table holds it: this command
 // is where a user sees what that search chose.
 #include <alignset/joint_lattice.h>
@@ -142,6 +143,10 @@ int RunJoint(const JointOptions& o) {
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!made.ok()) return Usage(made.status());
   const JointLattice& lattice = *made;
+  if (!o.png.empty() && lattice.dimensions() < 2) {
+    return Usage(Status::InvalidArgument("--png: at N = " + std::to_string(n) +
+                                         " the lattice keeps one dimension, no pair to draw"));
+  }
   const std::vector<uint32_t>& z = lattice.generator();
   FILE* report = ReportStreamFor(o.out);
 

@@ -89,7 +89,8 @@ TEST(JointCli, BadInputIsOneLineAndNonZero) {
   for (const std::string& args : std::vector<std::string>{
            "joint -d 3", "joint -n 64", "joint -n 1 -d 3", "joint -n 64 -d 0", "joint -n 64 -d 17",
            "joint -n 64 -d 3 --fold 3:4", "joint -n 64 -d 3 --fold 2", "joint -n 64 -d 3 --fold 2:0",
-           "joint -n 64 -d 3 --fold 2:4 --tent 2", "joint -n 64 -d 3 --tent 5", "joint -n 70000 -d 3"}) {
+           "joint -n 64 -d 3 --fold 2:4 --tent 2", "joint -n 64 -d 3 --tent 5", "joint -n 70000 -d 3",
+           "joint -n 2 -d 3 --png " + test_support::CliTempPath("joint_bad.png")}) {
     const CliRun r = Cli(args + " -o " + out);
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_EQ(test_support::CountLines(r.err), 1) << args << ": " << r.err;
