@@ -68,10 +68,9 @@ Status ParseFolds(const std::vector<std::string>& specs, uint32_t dimensions,
 // The pixel's values, row i = sample i, column d = dimension d.
 Status WriteValues(const std::string& path, uint32_t n, uint32_t columns, const std::vector<double>& v,
                    const std::string& comment) {
-  if (path.size() > 4 && path.compare(path.size() - 4, 4, ".npy") == 0) {
-    return WriteNpy(path, {n, columns}, v);
-  }
-  const bool csv = path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
+  const FileFormat format = FileFormatOf(path);
+  if (format == FileFormat::kNpy) return WriteNpy(path, {n, columns}, v);
+  const bool csv = format == FileFormat::kCsv;
   std::string text = csv ? "" : "# " + comment + "\n";
   for (uint32_t d = 0; csv && d < columns; ++d) text += (d ? ",d" : "d") + std::to_string(d);
   if (csv) text += "\n";

@@ -16,10 +16,6 @@
 namespace alignset::cli {
 namespace {
 
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // The core validators' messages, prefixed with the file's name.
 Status InFile(const std::string& path, const Status& s) {
   return s.ok() ? s : Status::InvalidArgument(path + ": " + s.message());
@@ -92,7 +88,7 @@ StatusOr<PatchInput> ReadPatchFile(const std::string& path) {
     if (!in) return Status::InvalidArgument("cannot read " + path + ": " + std::strerror(errno));
     data.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  if (!IsStdStream(path) && EndsWith(path, ".npy")) return ParseGrid(data, path);
+  if (FileFormatOf(path) == FileFormat::kNpy) return ParseGrid(data, path);
   return ParseSamples(data, path);
 }
 

@@ -17,18 +17,6 @@
 namespace alignset::cli {
 namespace {
 
-enum class Format { kText, kNpy, kCsv };
-
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-Format FormatOf(const std::string& path) {
-  if (EndsWith(path, ".npy")) return Format::kNpy;
-  if (EndsWith(path, ".csv")) return Format::kCsv;
-  return Format::kText;
-}
-
 std::string Shape(const std::vector<size_t>& dims) { return NpyShapeText(dims); }
 
 // ------------------------------------------------------------------ write
@@ -42,8 +30,8 @@ void AppendPair(std::string* out, const Point2& p, const char* format) {
 StatusOr<std::string> Serialize(const std::string& path, const std::vector<PointSet>& sets,
                                 bool several, const std::string& comment) {
   std::string out;
-  switch (IsStdStream(path) ? Format::kText : FormatOf(path)) {
-    case Format::kNpy: {
+  switch (FileFormatOf(path)) {
+    case FileFormat::kNpy: {
       const size_t n = sets.empty() ? 0 : sets[0].size();
       for (const PointSet& s : sets) {
         if (s.size() != n) {
@@ -58,7 +46,7 @@ StatusOr<std::string> Serialize(const std::string& path, const std::vector<Point
       }
       return out;
     }
-    case Format::kCsv:
+    case FileFormat::kCsv:
       // CSV has no comments: the metadata stays in text and .npy files' neighbours.
       out = several ? "set,x,y\n" : "x,y\n";
       for (size_t i = 0; i < sets.size(); ++i) {
@@ -68,7 +56,7 @@ StatusOr<std::string> Serialize(const std::string& path, const std::vector<Point
         }
       }
       return out;
-    case Format::kText: {
+    case FileFormat::kText: {
       std::istringstream lines(comment);
       for (std::string line; std::getline(lines, line);) out += "# " + line + "\n";
       for (size_t i = 0; i < sets.size(); ++i) {
@@ -239,6 +227,17 @@ StatusOr<std::vector<PointSet>> ParseText(const std::string& data, const std::st
 
 bool IsStdStream(const std::string& path) { return path == "-"; }
 
+FileFormat FileFormatOf(const std::string& path) {
+  auto ends_with = [&path](const char* suffix) {
+    const size_t n = std::strlen(suffix);
+    return path.size() >= n && path.compare(path.size() - n, n, suffix) == 0;
+  };
+  if (IsStdStream(path)) return FileFormat::kText;
+  if (ends_with(".npy")) return FileFormat::kNpy;
+  if (ends_with(".csv")) return FileFormat::kCsv;
+  return FileFormat::kText;
+}
+
 FILE* ReportStreamFor(const std::string& out_path) { return IsStdStream(out_path) ? stderr : stdout; }
 
 Status WritePointSets(const std::string& path, const std::vector<PointSet>& sets,
@@ -269,9 +268,9 @@ StatusOr<std::vector<PointSet>> ReadPointSets(const std::string& path) {
 }
 
 StatusOr<std::vector<PointSet>> ParsePointSets(const std::string& data, const std::string& path) {
-  const Format format = IsStdStream(path) ? Format::kText : FormatOf(path);
-  auto sets = format == Format::kNpy   ? ParseNpy(data, path)
-              : format == Format::kCsv ? ParseCsv(data, path)
+  const FileFormat format = FileFormatOf(path);
+  auto sets = format == FileFormat::kNpy   ? ParseNpy(data, path)
+              : format == FileFormat::kCsv ? ParseCsv(data, path)
                                        : ParseText(data, path);
   if (!sets.ok()) return sets.status();
   if (sets->empty()) return Status::InvalidArgument(path + ": no points");

@@ -29,6 +29,10 @@ namespace alignset::cli {
 
 // True for the path that means standard output / input.
 bool IsStdStream(const std::string& path);
+// A file's format by its path, as above: .npy, .csv, anything else (and "-")
+// text. Every command that reads or writes such files decides by this.
+enum class FileFormat { kText, kNpy, kCsv };
+FileFormat FileFormatOf(const std::string& path);
 // Where a command reports what it did: stdout, unless its points go there.
 FILE* ReportStreamFor(const std::string& out_path);
 

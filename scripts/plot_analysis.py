@@ -6,8 +6,9 @@
 DATA.json is what `alignset analyze --json` or `alignset convergence --json`
 prints ("kind": "spectrum" or "convergence"), or what `alignset joint --png`
 hands it ("kind": "joint": a pixel's 2-D projections); `--png` on those
-commands runs this script itself. A list of spectrum documents (a JSON array) draws one row
-of spectra side by side, which bench/figures uses for its spectrum panel.
+commands runs this script itself. A list of spectrum documents (a JSON array)
+draws one row of spectra side by side, which bench/figures uses for its
+spectrum panel.
 """
 import argparse
 import json
