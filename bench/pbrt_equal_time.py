@@ -151,8 +151,10 @@ def masks(ref, tau):
     return edge & ~emitter, ~emitter
 
 
-def rel_error(img, ref):
-    return (((img - ref) ** 2) / (ref ** 2 + 1e-4)).mean(axis=2)
+def rel_error(img, ref, other=None):
+    """Per pixel, the squared difference of img from ref (or from `other`)
+    relative to the reference, over RGB."""
+    return (((img - (ref if other is None else other)) ** 2) / (ref ** 2 + 1e-4)).mean(axis=2)
 
 
 def trimmed_mean(values, trim=0.001):
@@ -166,7 +168,7 @@ def floor(r, text, spp, ref, edge_mask, image_mask):
     fixed, --seed changed; half the images' relative squared difference."""
     a, sa = r.render(text, "zsobol", spp, FLOOR_SEEDS[0], FLOOR_SAMPLER_SEED)
     b, sb = r.render(text, "zsobol", spp, FLOOR_SEEDS[1], FLOOR_SAMPLER_SEED)
-    d = (((a - b) ** 2) / (ref ** 2 + 1e-4)).mean(axis=2) / 2
+    d = rel_error(a, ref, other=b) / 2
     return {"spp": spp, "edge": trimmed_mean(d[edge_mask]), "all": trimmed_mean(d[image_mask]),
             "seconds": float(np.median([sa, sb]))}
 
